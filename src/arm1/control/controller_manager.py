@@ -1,0 +1,182 @@
+"""The controller manager of ros_control: loads, switches and updates controllers. ROS-free.
+
+Load/unload/switch are called from service threads; ``update`` runs on the
+simulation thread. A switch is queued and takes effect at the next update, and
+the caller waits for it (so while physics is paused it waits, as in Gazebo).
+"""
+import logging
+import threading
+
+from .controller import ControllerError
+from .joint_position_controller import JointPositionController
+from .joint_state_controller import JointStateController
+
+log = logging.getLogger('arm1.control')
+
+CONTROLLER_TYPES = {c.type_name: c for c in (JointPositionController, JointStateController)}
+BASE_CLASS = 'controller_interface::ControllerBase'
+
+BEST_EFFORT, STRICT = 1, 2
+
+
+class ControllerManagerError(Exception):
+    """A request to the manager failed; the message says why, naming the controller."""
+
+
+class _Loaded:
+    __slots__ = ('name', 'type', 'controller', 'nodes', 'state')
+
+    def __init__(self, name, type_name, controller, nodes):
+        self.name, self.type, self.controller, self.nodes = name, type_name, controller, nodes
+        self.state = 'initialized'
+
+
+class ControllerManager:
+    def __init__(self, robot_hw, node_factory, namespace):
+        """``node_factory(namespace)`` returns a node handle (see controller.py)."""
+        self.robot_hw = robot_hw
+        self.node_factory = node_factory
+        self.namespace = namespace.rstrip('/')
+        self._lock = threading.Lock()
+        self._loaded = {}  # name -> _Loaded, in load order
+        self._running = ()  # snapshot the update thread iterates
+        self._pending = None  # (start, stop, done Event, result list)
+
+    # -- requests (any thread) ------------------------------------------------
+    def controller_types(self):
+        return sorted(CONTROLLER_TYPES)
+
+    def load_controller(self, name):
+        with self._lock:
+            if name in self._loaded:
+                raise ControllerManagerError(
+                    "A controller named '%s' was already loaded inside the controller manager" % name)
+        ns = '%s/%s' % (self.namespace, name)
+        controller_nh = self.node_factory(ns)
+        type_name = controller_nh.params.get('type')
+        if not type_name:
+            controller_nh.shutdown()
+            raise ControllerManagerError(
+                "Could not load controller '%s' because the type was not specified. Did you load "
+                "the controller configuration on the parameter server (namespace: '%s')?" % (name, ns))
+        cls = CONTROLLER_TYPES.get(type_name)
+        if cls is None:
+            controller_nh.shutdown()
+            raise ControllerManagerError(
+                "Could not load controller '%s' because controller type '%s' does not exist. "
+                "Known types: %s" % (name, type_name, ', '.join(self.controller_types())))
+        controller = cls()
+        controller.name = name
+        root_nh = self.node_factory(self.namespace)
+        try:
+            controller.init(self.robot_hw, root_nh, controller_nh)
+        except ControllerError as exc:
+            controller_nh.shutdown()
+            root_nh.shutdown()
+            raise ControllerManagerError("Initializing controller '%s' failed: %s" % (name, exc))
+        with self._lock:
+            self._loaded[name] = _Loaded(name, type_name, controller, (controller_nh, root_nh))
+        return controller
+
+    def unload_controller(self, name):
+        with self._lock:
+            entry = self._loaded.get(name)
+            if entry is None:
+                raise ControllerManagerError(
+                    "Could not unload controller with name '%s' because no controller with this "
+                    "name exists" % name)
+            if entry.state == 'running':
+                raise ControllerManagerError(
+                    "Could not unload controller with name '%s' because it is still running" % name)
+            del self._loaded[name]
+        for nh in entry.nodes:
+            nh.shutdown()
+
+    def switch_controller(self, start, stop, strictness=STRICT, timeout=0.0):
+        """Start and stop controllers at the next update; True when it happened."""
+        strictness = strictness if strictness in (BEST_EFFORT, STRICT) else BEST_EFFORT
+        with self._lock:
+            start = self._checked(start, 'start', lambda e: e.state != 'running', strictness)
+            stop = self._checked(stop, 'stop', lambda e: e.state == 'running', strictness)
+            if start is None or stop is None:
+                return False
+            conflict = self._resource_conflict(start, stop)
+            if conflict:
+                log.error('Could not switch controllers: %s', conflict)
+                return False
+            if not start and not stop:
+                return True
+            done = threading.Event()
+            self._pending = (start, stop, done)
+        if done.wait(timeout if timeout and timeout > 0 else None):
+            return True
+        with self._lock:
+            if self._pending and self._pending[2] is done:
+                self._pending = None
+        log.error('Switching controllers timed out after %.3f s (is physics paused?)', timeout)
+        return False
+
+    def _checked(self, names, verb, ok, strictness):
+        out = []
+        for name in names:
+            entry = self._loaded.get(name)
+            if entry is None or not ok(entry):
+                why = 'is not loaded' if entry is None else (
+                    'is already running' if verb == 'start' else 'is not running')
+                if strictness == STRICT:
+                    log.error("Could not %s controller '%s': it %s", verb, name, why)
+                    return None
+                log.warning("Not %s controller '%s': it %s",
+                            'starting' if verb == 'start' else 'stopping', name, why)
+                continue
+            out.append(entry)
+        return out
+
+    def _resource_conflict(self, start, stop):
+        owners = {}
+        for entry in self._loaded.values():
+            if (entry.state == 'running' and entry not in stop) or entry in start:
+                for iface, joints in entry.controller.claimed_resources():
+                    for joint in joints:
+                        if (iface, joint) in owners:
+                            return "joint '%s' would be claimed by both '%s' and '%s'" % (
+                                joint, owners[(iface, joint)], entry.name)
+                        owners[(iface, joint)] = entry.name
+        return None
+
+    def list_controllers(self):
+        """``[(name, type, state, claimed_resources)]`` in load order."""
+        with self._lock:
+            return [(e.name, e.type, e.state, e.controller.claimed_resources())
+                    for e in self._loaded.values()]
+
+    def controller(self, name):
+        entry = self._loaded.get(name)
+        return entry.controller if entry else None
+
+    # -- simulation thread ----------------------------------------------------
+    def update(self, time_ns, period, reset_controllers=False):
+        if self._pending is not None:
+            self._apply_switch(time_ns)
+        if reset_controllers:
+            for c in self._running:
+                c.stopping(time_ns)
+                c.starting(time_ns)
+        for c in self._running:
+            c.update(time_ns, period)
+
+    def _apply_switch(self, time_ns):
+        with self._lock:
+            start, stop, done = self._pending
+            self._pending = None
+            for entry in stop:
+                entry.controller.stopping(time_ns)
+                entry.state = 'stopped'
+                for joint in entry.controller.joints:
+                    joint.command = 0.0  # a stopped effort controller leaves no effort behind
+            for entry in start:
+                entry.controller.starting(time_ns)
+                entry.state = 'running'
+            self._running = tuple(e.controller for e in self._loaded.values() if e.state == 'running')
+        done.set()
+

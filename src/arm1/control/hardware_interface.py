@@ -1,0 +1,63 @@
+"""Joint handles and effort saturation, as hardware_interface and joint_limits_interface have them."""
+import math
+from dataclasses import dataclass, field
+
+EFFORT_JOINT_INTERFACE = 'hardware_interface/EffortJointInterface'
+POSITION_JOINT_INTERFACE = 'hardware_interface/PositionJointInterface'
+VELOCITY_JOINT_INTERFACE = 'hardware_interface/VelocityJointInterface'
+
+
+def canonical_interface(name):
+    """Transmissions may name the interface with or without the ``hardware_interface/`` prefix."""
+    name = (name or '').strip()
+    return name if '/' in name else 'hardware_interface/' + name
+
+
+@dataclass
+class JointLimits:
+    """The URDF ``<limit>`` of a joint; a missing bound is None."""
+    lower: float = None
+    upper: float = None
+    effort: float = None
+    velocity: float = None
+
+    @property
+    def has_position_limits(self):
+        return self.lower is not None and self.upper is not None
+
+
+@dataclass
+class JointHandle:
+    """State read from the simulation and the command a controller writes."""
+    name: str
+    type: str  # 'revolute', 'continuous' or 'prismatic'
+    limits: JointLimits = field(default_factory=JointLimits)
+    interface: str = EFFORT_JOINT_INTERFACE
+    position: float = 0.0
+    velocity: float = 0.0
+    effort: float = 0.0
+    command: float = 0.0
+    claimed_by: str = None
+
+
+def enforce_effort_limits(command, position, velocity, limits):
+    """gazebo_ros_control's effort saturation for EffortJointInterface joints.
+
+    Clamp to +-effort; zero any effort pushing further beyond a position limit or
+    further beyond the velocity limit.
+    """
+    if not math.isfinite(command):
+        return 0.0
+    max_eff = limits.effort if limits.effort is not None and limits.effort > 0 else math.inf
+    min_eff = -max_eff
+    if limits.has_position_limits:
+        if position < limits.lower:
+            min_eff = 0.0
+        elif position > limits.upper:
+            max_eff = 0.0
+    if limits.velocity is not None and limits.velocity > 0:
+        if velocity < -limits.velocity:
+            min_eff = 0.0
+        elif velocity > limits.velocity:
+            max_eff = 0.0
+    return min(max(command, min_eff), max_eff)

@@ -1,0 +1,48 @@
+"""joint_state_controller/JointStateController: publishes every joint at publish_rate in sim time."""
+from .controller import Controller, ControllerError, require_param
+
+
+class JointStateController(Controller):
+    type_name = 'joint_state_controller/JointStateController'
+    interface = None  # reads only: claims nothing
+
+    def __init__(self):
+        super().__init__()
+        self.period_ns = None
+        self.last_publish_ns = None
+        self._pub = None
+
+    def init(self, robot_hw, root_nh, controller_nh):
+        ns = controller_nh.namespace
+        rate = require_param(controller_nh.params, 'publish_rate', ns)
+        try:
+            rate = float(rate)
+        except (TypeError, ValueError):
+            raise ControllerError("Parameter 'publish_rate' in %s is not a number: %r" % (ns, rate))
+        self.period_ns = int(round(1e9 / rate)) if rate > 0 else None
+        names = controller_nh.params.get('joints') or robot_hw.joint_names()  # sorted, like std::map
+        self.joints = [robot_hw.get_handle(n, None, ns) for n in names]
+        extra = controller_nh.params.get('extra_joints') or []
+        self._extra = [(e['name'], float(e.get('position', 0.0)), float(e.get('velocity', 0.0)),
+                        float(e.get('effort', 0.0))) for e in extra]
+        self._names = [j.name for j in self.joints] + [e[0] for e in self._extra]
+        self._pub = root_nh.advertise('joint_states', 'sensor_msgs/JointState', 4)
+
+    def starting(self, time_ns):
+        self.last_publish_ns = None
+
+    def update(self, time_ns, period):
+        if self.period_ns is None:
+            return
+        if self.last_publish_ns is None:
+            self.last_publish_ns = time_ns  # publish on the first update
+        elif self.last_publish_ns + self.period_ns < time_ns:
+            self.last_publish_ns += self.period_ns  # advance by exactly one period: no drift
+        else:
+            return
+        joints, extra = self.joints, self._extra
+        self._pub.publish(dict(
+            stamp=time_ns, name=self._names,
+            position=[j.position for j in joints] + [e[1] for e in extra],
+            velocity=[j.velocity for j in joints] + [e[2] for e in extra],
+            effort=[j.effort for j in joints] + [e[3] for e in extra]))

@@ -1,0 +1,75 @@
+"""The PID of control_toolbox::Pid, with its integral clamp and antiwindup rules."""
+import math
+
+
+class PidConfigError(ValueError):
+    pass
+
+
+class Pid:
+    """A PID with control_toolbox's semantics.
+
+    Without antiwindup the integral *term* is clamped to [i_min, i_max], so with
+    no i_clamp the integral term is always zero (as in Gazebo). With antiwindup
+    and i != 0 the accumulated error is clamped to [i_min/i, i_max/i].
+    """
+
+    def __init__(self, p=0.0, i=0.0, d=0.0, i_max=0.0, i_min=0.0, antiwindup=False):
+        self.set_gains(p, i, d, i_max, i_min, antiwindup)
+        self.reset()
+
+    @classmethod
+    def from_params(cls, params, namespace=''):
+        """Build from a ``pid`` parameter dict (p required; i, d, i_clamp* optional)."""
+        if not isinstance(params, dict) or 'p' not in params:
+            raise PidConfigError('No p gain specified for pid.  Namespace: %s' % namespace)
+        try:
+            p = float(params['p'])
+            i = float(params.get('i', 0.0))
+            d = float(params.get('d', 0.0))
+            i_clamp = abs(float(params.get('i_clamp', 0.0)))
+            i_max = float(params.get('i_clamp_max', i_clamp))
+            i_min = float(params.get('i_clamp_min', -i_clamp))
+        except (TypeError, ValueError) as exc:
+            raise PidConfigError('Bad pid gain under %s: %s' % (namespace, exc))
+        return cls(p, i, d, i_max, i_min, bool(params.get('antiwindup', False)))
+
+    def set_gains(self, p, i, d, i_max, i_min, antiwindup=False):
+        self.p, self.i, self.d = float(p), float(i), float(d)
+        self.i_max, self.i_min = float(i_max), float(i_min)
+        self.antiwindup = bool(antiwindup)
+
+    def gains(self):
+        return dict(p=self.p, i=self.i, d=self.d, i_clamp_max=self.i_max,
+                    i_clamp_min=self.i_min, antiwindup=self.antiwindup)
+
+    def reset(self):
+        self.p_error_last = 0.0
+        self.p_error = 0.0
+        self.i_error = 0.0
+        self.d_error = 0.0
+        self.cmd = 0.0
+
+    def compute_command(self, error, dt):
+        """Effort for this error over a period of ``dt`` seconds (derivative by finite difference)."""
+        if dt == 0.0 or not math.isfinite(error):
+            return 0.0
+        error_dot = (error - self.p_error_last) / dt
+        self.p_error_last = error
+        return self.compute_command_with_rate(error, error_dot, dt)
+
+    def compute_command_with_rate(self, error, error_dot, dt):
+        self.p_error = error
+        self.d_error = error_dot
+        if dt == 0.0 or not (math.isfinite(error) and math.isfinite(error_dot)):
+            return 0.0
+        p_term = self.p * error
+        self.i_error += dt * error
+        if self.antiwindup and self.i != 0.0:
+            lo, hi = sorted((self.i_min / self.i, self.i_max / self.i))
+            self.i_error = min(max(self.i_error, lo), hi)
+        i_term = self.i * self.i_error
+        if not self.antiwindup:
+            i_term = min(max(i_term, self.i_min), self.i_max)
+        self.cmd = p_term + i_term + self.d * error_dot
+        return self.cmd

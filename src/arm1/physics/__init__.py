@@ -1,0 +1,1 @@
+"""ROS-free physics layer: pybullet world and robots, URDF and SDF reading."""

@@ -1,0 +1,63 @@
+"""A robot in the pybullet world: loaded from a URDF file, read and driven by joint effort."""
+import pybullet as p
+
+
+class Robot:
+    def __init__(self, client, urdf_path, position=(0, 0, 0), orientation=(0, 0, 0, 1),
+                 fixed_base=False):
+        self.client = client
+        # Inertia from the file: pybullet would otherwise derive it from the collision mesh.
+        self.body = p.loadURDF(urdf_path, position, orientation, useFixedBase=fixed_base,
+                               flags=p.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+        self.initial_pose = (tuple(position), tuple(orientation))
+        self.joint_index = {}
+        self.link_index = {p.getBodyInfo(self.body, physicsClientId=client)[0].decode(): -1}
+        for i in range(p.getNumJoints(self.body, physicsClientId=client)):
+            info = p.getJointInfo(self.body, i, physicsClientId=client)
+            self.joint_index[info[1].decode()] = i
+            self.link_index[info[12].decode()] = i
+            # Gazebo has no velocity damping: pybullet's default 0.04 would add some.
+            p.changeDynamics(self.body, i, linearDamping=0, angularDamping=0,
+                             physicsClientId=client)
+        movable = [i for i in self.joint_index.values()
+                   if p.getJointInfo(self.body, i, physicsClientId=client)[2] != p.JOINT_FIXED]
+        # Each joint's default velocity motor would hold it still: switch it off so effort acts.
+        p.setJointMotorControlArray(self.body, movable, p.VELOCITY_CONTROL,
+                                    forces=[0.0] * len(movable), physicsClientId=client)
+        self.movable = movable
+
+    def indices(self, joint_names):
+        return [self.joint_index[n] for n in joint_names]
+
+    def read(self, indices):
+        """``[(position, velocity), ...]`` of the given joints."""
+        return [s[:2] for s in p.getJointStates(self.body, indices, physicsClientId=self.client)]
+
+    def apply_efforts(self, indices, efforts):
+        # A TORQUE_CONTROL command lasts one stepSimulation: call this before every step.
+        p.setJointMotorControlArray(self.body, indices, p.TORQUE_CONTROL, forces=efforts,
+                                    physicsClientId=self.client)
+
+    def set_joint_positions(self, positions):
+        """``{joint name: position}``, at rest."""
+        for name, value in positions.items():
+            p.resetJointState(self.body, self.joint_index[name], value, 0.0,
+                              physicsClientId=self.client)
+
+    def reset(self):
+        """Back to the spawn pose, every joint at zero and at rest."""
+        p.resetBasePositionAndOrientation(self.body, *self.initial_pose, physicsClientId=self.client)
+        p.resetBaseVelocity(self.body, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
+        for i in self.movable:
+            p.resetJointState(self.body, i, 0.0, 0.0, physicsClientId=self.client)
+
+    def link_pose(self, link_name):
+        """World position and quaternion of a link's frame."""
+        i = self.link_index[link_name]
+        if i == -1:
+            return p.getBasePositionAndOrientation(self.body, physicsClientId=self.client)
+        s = p.getLinkState(self.body, i, computeForwardKinematics=True, physicsClientId=self.client)
+        return s[4], s[5]
+
+    def remove(self):
+        p.removeBody(self.body, physicsClientId=self.client)

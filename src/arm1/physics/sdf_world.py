@@ -1,0 +1,128 @@
+"""Reads a Gazebo SDF world: physics settings, gravity and the models a pybullet world can build."""
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+
+SHAPES = ('plane', 'box', 'sphere', 'cylinder')
+
+
+class SdfError(ValueError):
+    """The world file is unusable; the message names the file and the culprit."""
+
+
+@dataclass
+class Shape:
+    kind: str  # one of SHAPES
+    size: tuple  # plane: normal; box: xyz; sphere: (r,); cylinder: (r, length)
+    pose: tuple = (0, 0, 0, 0, 0, 0)
+    color: tuple = (0.8, 0.8, 0.8, 1.0)
+
+
+@dataclass
+class StaticModel:
+    name: str
+    pose: tuple
+    shapes: list
+
+
+@dataclass
+class WorldConfig:
+    max_step_size: float = 0.001
+    real_time_factor: float = 1.0
+    real_time_update_rate: float = 1000.0
+    gravity: tuple = (0.0, 0.0, -9.8)
+    models: list = field(default_factory=list)
+    skipped: list = field(default_factory=list)  # (name, why) of what could not be built
+
+
+def _numbers(text, n, what):
+    try:
+        values = tuple(float(v) for v in (text or '').split())
+    except ValueError:
+        raise SdfError('%s: %r is not %d numbers' % (what, text, n))
+    if len(values) != n:
+        raise SdfError('%s: %r is not %d numbers' % (what, text, n))
+    return values
+
+
+def _pose(element, what):
+    text = element.findtext('pose') if element is not None else None
+    return _numbers(text, 6, what + ' <pose>') if text and text.strip() else (0.0,) * 6
+
+
+def _shape(geometry, what):
+    for kind in SHAPES:
+        g = geometry.find(kind)
+        if g is None:
+            continue
+        if kind == 'plane':
+            return Shape(kind, _numbers(g.findtext('normal') or '0 0 1', 3, what))
+        if kind == 'box':
+            return Shape(kind, _numbers(g.findtext('size'), 3, what + ' box size'))
+        if kind == 'sphere':
+            return Shape(kind, _numbers(g.findtext('radius'), 1, what + ' radius'))
+        return Shape(kind, _numbers(g.findtext('radius'), 1, what + ' radius')
+                     + _numbers(g.findtext('length'), 1, what + ' length'))
+    return None
+
+
+def _model(model):
+    """A StaticModel, or the reason it cannot be built."""
+    name = model.get('name', '?')
+    if (model.findtext('static') or 'false').strip() not in ('1', 'true'):
+        return None, 'only static models are built'
+    shapes = []
+    for link in model.findall('link'):
+        link_pose = _pose(link, 'model %s link' % name)
+        for collision in link.findall('collision'):
+            geometry = collision.find('geometry')
+            shape = _shape(geometry, 'model %s' % name) if geometry is not None else None
+            if shape is None:
+                return None, 'collision geometry other than %s' % '/'.join(SHAPES)
+            pose = _pose(collision, 'model %s collision' % name)
+            shape.pose = tuple(a + b for a, b in zip(link_pose, pose))  # sums are right for xyz
+            shapes.append(shape)
+    if not shapes:
+        return None, 'no collision geometry'
+    return StaticModel(name, _pose(model, 'model %s' % name), shapes), None
+
+
+def parse_world(xml_text, source='world'):
+    try:
+        root = ET.fromstring(xml_text)
+    except ET.ParseError as exc:
+        raise SdfError('%s is not well-formed XML: %s' % (source, exc))
+    world = root.find('world') if root.tag == 'sdf' else None
+    if world is None:
+        raise SdfError('%s has no <sdf><world>' % source)
+    config = WorldConfig()
+    physics = world.find('physics')
+    if physics is not None:
+        for tag in ('max_step_size', 'real_time_factor', 'real_time_update_rate'):
+            text = physics.findtext(tag)
+            if text is not None:
+                setattr(config, tag, _numbers(text, 1, '%s <physics><%s>' % (source, tag))[0])
+    if config.max_step_size <= 0:
+        raise SdfError('%s: <max_step_size> must be positive' % source)
+    gravity = world.findtext('gravity')
+    if gravity is not None:
+        config.gravity = _numbers(gravity, 3, source + ' <gravity>')
+    for model in world.findall('model'):
+        built, why = _model(model)
+        if built:
+            config.models.append(built)
+        else:
+            config.skipped.append((model.get('name', '?'), why))
+    for include in world.findall('include'):
+        uri = (include.findtext('uri') or '').strip()
+        name = (include.findtext('name') or uri).strip()
+        config.skipped.append((name, 'included from %s, which this stand-in cannot fetch' % uri))
+    return config
+
+
+def read_world(path):
+    try:
+        with open(path) as f:
+            text = f.read()
+    except OSError as exc:
+        raise SdfError('cannot read world file %s: %s' % (path, exc.strerror))
+    return parse_world(text, path)

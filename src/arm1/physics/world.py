@@ -1,0 +1,85 @@
+"""The pybullet world: physics settings, static scenery, robots, stepping and reset."""
+import logging
+import os
+
+import pybullet as p
+
+from .robot import Robot
+
+log = logging.getLogger('arm1.physics')
+
+
+def connect(gui):
+    """A pybullet client: a window when asked and a display exists, headless otherwise."""
+    if gui:
+        if not os.environ.get('DISPLAY'):
+            log.warning('gui requested but no DISPLAY is set: running headless')
+        else:
+            client = p.connect(p.GUI)
+            if client >= 0:
+                return client, True
+            log.warning('could not open the pybullet window on %s: running headless',
+                        os.environ['DISPLAY'])
+    return p.connect(p.DIRECT), False
+
+
+class World:
+    def __init__(self, config, gui=False):
+        """``config`` is a sdf_world.WorldConfig."""
+        self.client, self.gui = connect(gui)
+        cid = self.client
+        p.setTimeStep(config.max_step_size, physicsClientId=cid)
+        p.setGravity(*config.gravity, physicsClientId=cid)
+        if self.gui:
+            p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=cid)
+            p.resetDebugVisualizerCamera(0.35, 45, -30, (0, 0, 0.05), physicsClientId=cid)
+        self.scenery = [self._build(m) for m in config.models]
+        self.robots = []
+
+    def _build(self, model):
+        cid = self.client
+        quat = p.getQuaternionFromEuler(model.pose[3:])
+        bodies = []
+        for s in model.shapes:
+            if s.kind == 'plane':
+                col = p.createCollisionShape(p.GEOM_PLANE, planeNormal=s.size, physicsClientId=cid)
+                vis = p.createVisualShape(p.GEOM_BOX, halfExtents=(50, 50, 0.0005),
+                                          rgbaColor=s.color, physicsClientId=cid)
+            elif s.kind == 'box':
+                half = [v / 2 for v in s.size]
+                col = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=cid)
+                vis = p.createVisualShape(p.GEOM_BOX, halfExtents=half, rgbaColor=s.color,
+                                          physicsClientId=cid)
+            elif s.kind == 'sphere':
+                col = p.createCollisionShape(p.GEOM_SPHERE, radius=s.size[0], physicsClientId=cid)
+                vis = p.createVisualShape(p.GEOM_SPHERE, radius=s.size[0], rgbaColor=s.color,
+                                          physicsClientId=cid)
+            else:
+                col = p.createCollisionShape(p.GEOM_CYLINDER, radius=s.size[0], height=s.size[1],
+                                             physicsClientId=cid)
+                vis = p.createVisualShape(p.GEOM_CYLINDER, radius=s.size[0], length=s.size[1],
+                                          rgbaColor=s.color, physicsClientId=cid)
+            pos, orn = p.multiplyTransforms(model.pose[:3], quat, s.pose[:3],
+                                            p.getQuaternionFromEuler(s.pose[3:]))
+            bodies.append(p.createMultiBody(0, col, vis, pos, orn, physicsClientId=cid))
+        return bodies
+
+    def load_robot(self, urdf_path, position, orientation, fixed_base):
+        robot = Robot(self.client, urdf_path, position, orientation, fixed_base)
+        self.robots.append(robot)
+        return robot
+
+    def remove_robot(self, robot):
+        self.robots.remove(robot)
+        robot.remove()
+
+    def step(self):
+        p.stepSimulation(physicsClientId=self.client)
+
+    def reset(self):
+        for robot in self.robots:
+            robot.reset()
+
+    def close(self):
+        if p.isConnected(self.client):
+            p.disconnect(self.client)

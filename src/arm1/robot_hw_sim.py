@@ -1,0 +1,53 @@
+"""gazebo_ros_control's DefaultRobotHWSim: joint handles bound to a simulated robot.
+
+The actuated joints are those the URDF's transmissions name; each is read from
+the physics every update and driven by the saturated effort its controller wrote.
+"""
+import logging
+
+from .control.controller import ControllerError
+from .control.hardware_interface import (EFFORT_JOINT_INTERFACE, JointHandle,
+                                         enforce_effort_limits)
+
+log = logging.getLogger('arm1.control')
+
+
+class DefaultRobotHWSim:
+    def __init__(self, description, robot):
+        """``description`` is a urdf_model.RobotModel, ``robot`` a physics Robot."""
+        self.robot = robot
+        self.handles = {}
+        for joint, interface in description.actuated_joints():
+            if interface != EFFORT_JOINT_INTERFACE:
+                log.error("joint '%s': hardware interface '%s' is not simulated (only %s); "
+                          'the joint is left passive', joint.name, interface,
+                          EFFORT_JOINT_INTERFACE)
+                continue
+            self.handles[joint.name] = JointHandle(joint.name, joint.type, joint.limits, interface)
+        self._ordered = [self.handles[n] for n in sorted(self.handles)]
+        self._indices = robot.indices([h.name for h in self._ordered])
+
+    def joint_names(self):
+        """Sorted, as hardware_interface's std::map gives them."""
+        return [h.name for h in self._ordered]
+
+    def get_handle(self, name, interface, controller_ns):
+        handle = self.handles.get(name)
+        if handle is None:
+            raise ControllerError(
+                "joint '%s' (from %s/joint) is not an actuated joint of the robot; known joints: %s"
+                % (name, controller_ns, ', '.join(self.joint_names()) or 'none'))
+        if interface is not None and interface != handle.interface:
+            raise ControllerError("joint '%s' offers %s, not %s" % (name, handle.interface, interface))
+        return handle
+
+    def read(self):
+        for h, (pos, vel) in zip(self._ordered, self.robot.read(self._indices)):
+            h.position, h.velocity = pos, vel
+
+    def write(self):
+        efforts = []
+        for h in self._ordered:
+            h.effort = enforce_effort_limits(h.command, h.position, h.velocity, h.limits)
+            efforts.append(h.effort)
+        self.robot.apply_efforts(self._indices, efforts)

@@ -1,0 +1,1 @@
+"""Thin ROS wiring: translates between rospy and the ROS-free simulation."""

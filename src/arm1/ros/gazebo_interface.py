@@ -1,0 +1,198 @@
+"""The world node: gazebo_ros's API (``/clock``, ``/gazebo/*`` services) around a Simulation.
+
+Physics runs on the main thread. Service calls arrive on rospy's threads and are
+handed to the main thread between two steps, so pybullet is only touched there.
+"""
+import argparse
+import collections
+import sys
+import threading
+import time
+
+import rospkg
+import rospy
+from rosgraph_msgs.msg import Clock
+from std_msgs.msg import Float64
+from std_srvs.srv import Empty
+
+from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
+
+from ..pacer import Pacer, RealTimeFactorMeter, wall_period
+from ..physics.sdf_world import SdfError, WorldConfig, read_world
+from ..simulation import Simulation, SpawnError
+from .controller_manager_interface import ControllerManagerInterface
+from .node_handle import route_core_logs, to_time
+
+
+class PackageFinder:
+    def __init__(self):
+        self._rospack = rospkg.RosPack()
+
+    def __call__(self, name):
+        try:
+            return self._rospack.get_path(name)
+        except rospkg.ResourceNotFound:
+            raise LookupError(name)
+
+
+class GazeboRosApi:
+    def __init__(self, sim, paused=False):
+        self.sim = sim
+        self.paused = paused
+        self._calls = collections.deque()
+        self._find_package = PackageFinder()
+        self._cm_interfaces = {}
+        self.clock_period_ns = int(1e9 / max(1e-3, float(rospy.get_param('~pub_clock_frequency', 100))))
+        self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
+        self._rtf_pub = rospy.Publisher('~real_time_factor', Float64, queue_size=1, latch=True)
+        self.rtf = RealTimeFactorMeter()
+        self._services = [
+            rospy.Service('~pause_physics', Empty, self._empty(self._set_paused, True)),
+            rospy.Service('~unpause_physics', Empty, self._empty(self._set_paused, False)),
+            rospy.Service('~reset_simulation', Empty, self._empty(self.sim.reset_simulation)),
+            rospy.Service('~reset_world', Empty, self._empty(self.sim.reset_world)),
+            rospy.Service('~spawn_urdf_model', SpawnModel, self._spawn),
+            rospy.Service('~delete_model', DeleteModel, self._delete),
+            rospy.Service('~set_model_configuration', SetModelConfiguration, self._configure),
+        ]
+
+    # -- services: run on rospy threads, work on the main thread -------------------
+    def call_in_sim_thread(self, fn, *args):
+        done, box = threading.Event(), []
+
+        def run():
+            try:
+                box.append((True, fn(*args)))
+            except Exception as exc:  # handed back to the caller's thread
+                box.append((False, exc))
+            done.set()
+        self._calls.append(run)
+        while not done.wait(0.5):
+            if rospy.is_shutdown():
+                raise rospy.ServiceException('simulation shut down')
+        ok, value = box[0]
+        if not ok:
+            raise value
+        return value
+
+    def _empty(self, fn, *args):
+        def handler(req):
+            self.call_in_sim_thread(fn, *args)
+            return []
+        return handler
+
+    def _set_paused(self, paused):
+        self.paused = paused
+
+    def _spawn(self, req):
+        pose = req.initial_pose
+        xyz = (pose.position.x, pose.position.y, pose.position.z)
+        q = (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w)
+        if q == (0, 0, 0, 0):
+            q = (0, 0, 0, 1)
+        try:
+            model = self.call_in_sim_thread(self._spawn_in_sim, req.model_name, req.model_xml,
+                                            xyz, q, req.robot_namespace)
+        except SpawnError as exc:
+            rospy.logerr(str(exc))
+            return False, str(exc)
+        msg = "SpawnModel: Successfully spawned entity '%s'" % model.name
+        if model.controller_manager is not None:
+            msg += ' with controller manager in %s' % model.namespace
+        rospy.loginfo(msg)
+        return True, msg
+
+    def _spawn_in_sim(self, name, xml, xyz, quat, namespace):
+        return self.sim.spawn_urdf(name, xml, xyz, quat, namespace, self._find_package,
+                                   self._make_controller_manager)
+
+    def _make_controller_manager(self, hw, namespace):
+        interface = ControllerManagerInterface(hw, namespace)
+        self._cm_interfaces[namespace] = interface
+        return interface.manager
+
+    def _delete(self, req):
+        try:
+            model = self.call_in_sim_thread(self.sim.delete_model, req.model_name)
+        except SpawnError as exc:
+            return False, str(exc)
+        interface = self._cm_interfaces.pop(model.namespace, None)
+        if interface:
+            interface.shutdown()
+        return True, "DeleteModel: successfully deleted model '%s'" % req.model_name
+
+    def _configure(self, req):
+        try:
+            self.call_in_sim_thread(self.sim.set_model_configuration, req.model_name,
+                                    list(req.joint_names), list(req.joint_positions))
+        except SpawnError as exc:
+            return False, str(exc)
+        return True, 'SetModelConfiguration: success'
+
+    # -- main thread ------------------------------------------------------------
+    def publish_clock(self):
+        self._clock_pub.publish(Clock(to_time(self.sim.time_ns)))
+
+    def run(self, pacer):
+        sim, calls, clock_period = self.sim, self._calls, self.clock_period_ns
+        last_clock = None
+        self.publish_clock()
+        while not rospy.is_shutdown():
+            while calls:
+                calls.popleft()()
+            if self.paused:
+                self.rtf.pause()
+                time.sleep(0.001)
+                pacer.restart()
+                last_clock = None
+                continue
+            sim.step()
+            now = sim.time_ns
+            if last_clock is None or now - last_clock >= clock_period or now < last_clock:
+                self.publish_clock()
+                last_clock = now
+                if self.rtf.update(now * 1e-9):
+                    self._rtf_pub.publish(self.rtf.value)
+            pacer.wait()
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(prog='gzserver', description=(
+        'pybullet stand-in for gzserver with gazebo_ros: runs the world file, publishes /clock '
+        'and offers the /gazebo services.'))
+    parser.add_argument('world', nargs='?', help='SDF world file (default: an empty world)')
+    parser.add_argument('-u', '--paused', action='store_true', help='start with physics paused')
+    parser.add_argument('--gui', action='store_true', help="open pybullet's window if a display exists")
+    parser.add_argument('-e', '--physics', default='ode', help='ignored: pybullet is the engine')
+    parser.add_argument('--verbose', action='store_true')
+    parser.add_argument('--real-time-factor', type=float, help='overrides the world file')
+    parser.add_argument('--real-time-update-rate', type=float, help='overrides the world file')
+    return parser.parse_args(argv)
+
+
+def main(argv=None):
+    argv = rospy.myargv(sys.argv if argv is None else argv)[1:]
+    args = parse_args(argv)
+    rospy.init_node('gazebo')
+    route_core_logs()
+    try:
+        config = read_world(args.world) if args.world else WorldConfig()
+    except SdfError as exc:
+        rospy.logfatal(str(exc))
+        sys.exit(1)
+    for attr in ('real_time_factor', 'real_time_update_rate'):
+        if getattr(args, attr) is not None:
+            setattr(config, attr, getattr(args, attr))
+    if config.skipped:
+        rospy.logwarn('world: not built: %s', '; '.join('%s (%s)' % s for s in config.skipped))
+    sim = Simulation(config, gui=args.gui)
+    api = GazeboRosApi(sim, paused=args.paused)
+    period = wall_period(config.max_step_size, config.real_time_factor,
+                         config.real_time_update_rate)
+    rospy.loginfo('world ready: step %.4f s, real-time factor %g, update rate %g Hz%s',
+                  config.max_step_size, config.real_time_factor, config.real_time_update_rate,
+                  ' (paused)' if args.paused else '')
+    try:
+        api.run(Pacer(period))
+    finally:
+        sim.close()

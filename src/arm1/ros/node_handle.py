@@ -1,0 +1,95 @@
+"""The node handle controllers receive (see control/controller.py), implemented with rospy.
+
+It translates between the plain dicts and floats of the ROS-free core and ROS
+messages; nothing else happens here.
+"""
+import logging
+
+import rospy
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64
+
+from arm1.msg import JointControllerState
+
+
+def to_time(ns):
+    return rospy.Time(ns // 1000000000, ns % 1000000000)
+
+
+def _joint_state(f):
+    m = JointState(name=f['name'], position=f['position'], velocity=f['velocity'],
+                   effort=f['effort'])
+    m.header.stamp = to_time(f['stamp'])
+    return m
+
+
+def _controller_state(f):
+    m = JointControllerState(**{k: v for k, v in f.items() if k != 'stamp'})
+    m.header.stamp = to_time(f['stamp'])
+    return m
+
+
+# type name -> (message class, dict -> message)
+MESSAGES = {
+    'sensor_msgs/JointState': (JointState, _joint_state),
+    'arm1/JointControllerState': (JointControllerState, _controller_state),
+    'std_msgs/Float64': (Float64, lambda f: Float64(f)),
+}
+
+
+class _Publisher:
+    __slots__ = ('pub', 'convert')
+
+    def __init__(self, pub, convert):
+        self.pub, self.convert = pub, convert
+
+    def publish(self, fields):
+        if self.pub.get_num_connections():  # build no message nobody reads
+            self.pub.publish(self.convert(fields))
+
+
+class RosNodeHandle:
+    def __init__(self, namespace):
+        self.namespace = namespace.rstrip('/') or '/'
+        self.params = rospy.get_param(self.namespace, {})
+        if not isinstance(self.params, dict):
+            self.params = {}
+        self._handles = []
+
+    def _name(self, topic):
+        return topic if topic.startswith('/') else '%s/%s' % (self.namespace.rstrip('/'), topic)
+
+    def advertise(self, topic, type_name, queue_size):
+        cls, convert = MESSAGES[type_name]
+        pub = rospy.Publisher(self._name(topic), cls, queue_size=queue_size)
+        self._handles.append(pub)
+        return _Publisher(pub, convert)
+
+    def subscribe(self, topic, type_name, callback):
+        cls, _ = MESSAGES[type_name]
+        sub = rospy.Subscriber(self._name(topic), cls, lambda m: callback(m.data), queue_size=1)
+        self._handles.append(sub)
+        return sub
+
+    def shutdown(self):
+        for h in self._handles:
+            h.unregister()
+        self._handles = []
+
+
+class RospyLogHandler(logging.Handler):
+    """Sends the core's Python log records to rosout."""
+
+    def emit(self, record):
+        level = record.levelno
+        log = (rospy.logerr if level >= logging.ERROR else rospy.logwarn if level >= logging.WARNING
+               else rospy.loginfo if level >= logging.INFO else rospy.logdebug)
+        log(self.format(record))
+
+
+def route_core_logs():
+    logger = logging.getLogger('arm1')
+    if not any(isinstance(h, RospyLogHandler) for h in logger.handlers):
+        logger.addHandler(RospyLogHandler())
+        logger.setLevel(logging.INFO)
+        logger.propagate = False
