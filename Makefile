@@ -1,0 +1,137 @@
+# Set-up, build and run targets for arm1 (ROS 1 from Debian 12's own packages).
+#
+#   make setup   apt packages, .ws/venv (pip pins in requirements.txt) and the
+#                catkin workspace .ws/ (.ws/src/arm1: links to this repo), built. Idempotent;
+#                stamp files under .ws/stamps make a second run take ~0.05 s.
+#   make build   catkin_make of .ws (always runs)
+#   make demo | test | bench   run inside the sourced workspace (tools/ws-run)
+#   make clean   remove .ws
+#
+# Runs as root (apt-get); elsewhere apt-get is run through sudo.
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := setup
+
+ROOT    := $(patsubst %/,%,$(dir $(abspath $(lastword $(MAKEFILE_LIST)))))
+WS      := $(ROOT)/.ws
+VENV    := $(WS)/venv
+STAMPS  := $(WS)/stamps
+SYS_PY  := /usr/bin/python3
+VENV_PY := $(VENV)/bin/python3
+WS_SHELL := $(ROOT)/tools/ws-run
+PKG_LINK := $(WS)/src/arm1
+
+SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
+
+APT_PACKAGES := \
+  python3-rospy python3-roslaunch python3-rostest python3-rosunit rosbash \
+  catkin rosout ros-robot-state-publisher joint-state-publisher \
+  python3-std-msgs python3-sensor-msgs python3-std-srvs python3-geometry-msgs \
+  python3-rosgraph-msgs \
+  ros-std-msgs libstd-msgs-dev ros-geometry-msgs libgeometry-msgs-dev \
+  ros-sensor-msgs libsensor-msgs-dev ros-std-srvs libstd-srvs-dev \
+  ros-rosgraph-msgs libros-rosgraph-msgs-dev \
+  python3-dynamic-reconfigure libdynamic-reconfigure-config-init-mutex-dev \
+  ros-message-generation ros-message-runtime \
+  python3-rosservice python3-rostopic python3-rosparam python3-rosnode \
+  python3-rosmsg python3-rosbag rospack-tools python3-rosmaster python3-rospkg \
+  python3-catkin-pkg \
+  python3-venv python3-pip python3-numpy python3-yaml \
+  cmake make g++ xvfb
+
+# A change to any of these rebuilds the workspace (python modules under
+# src/arm1 need no rebuild: the devel space imports them from src/).
+BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
+  $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/env-hooks/*) \
+  $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
+  $(wildcard $(ROOT)/src/*/__init__.py)
+
+.PHONY: setup build demo test bench clean link-package
+
+# A stamp is only trusted while what it stands for is still there.
+ifeq ($(wildcard $(VENV_PY)),)
+.PHONY: $(STAMPS)/venv
+endif
+ifeq ($(wildcard $(WS)/devel/setup.bash),)
+.PHONY: $(STAMPS)/build
+endif
+
+setup: $(STAMPS)/build link-package
+
+# a. Debian packages: dpkg-query first, so a re-run does no apt work at all.
+$(STAMPS)/apt: $(ROOT)/Makefile
+	@mkdir -p $(STAMPS)
+	@missing=""; \
+	for p in $(APT_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' "$$p" 2>/dev/null | grep -q 'ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "setup: apt-get install$$missing"; \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -q; \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $$missing; \
+	else \
+	  echo "setup: Debian packages already installed"; \
+	fi
+	@touch $@
+
+# b. venv that sees Debian's ROS (system site-packages) plus the pip pins.
+$(STAMPS)/venv: $(ROOT)/requirements.txt $(STAMPS)/apt
+	@if [ ! -x $(VENV_PY) ] || ! $(VENV_PY) -c 'import sys' 2>/dev/null; then \
+	  rm -rf $(VENV); \
+	  echo "setup: creating $(VENV)"; \
+	  $(SYS_PY) -m venv --system-site-packages $(VENV); \
+	fi
+	$(VENV_PY) -m pip install -q --disable-pip-version-check -r $(ROOT)/requirements.txt
+	@touch $@
+
+# c. catkin workspace .ws: .ws/src/arm1 stands for this repo. It is a real
+#    directory of symlinks to the repo's top-level entries (not one symlink
+#    to the repo root), leaving out dot-entries (.ws, .git, ...) and tools/:
+#    the package dir that rospack reports must not contain .ws itself, or
+#    `rosrun arm1 NODE` (find -L over the package dir) loops through
+#    .ws/src/arm1/.ws/... and finds the node's name many times over (devel
+#    relays, build dir, venv bin, tools/bin/xacro) and stops to ask which.
+#    Re-synced on every `make setup` (a few ms), so new top-level dirs show up.
+link-package:
+	@if [ -L $(PKG_LINK) ]; then rm -f $(PKG_LINK); fi
+	@mkdir -p $(PKG_LINK)
+	@cd $(PKG_LINK) && \
+	for e in $(ROOT)/*; do \
+	  n=$${e##*/}; \
+	  case "$$n" in tools|'*') continue ;; esac; \
+	  [ "$$(readlink "$$n" 2>/dev/null)" = "../../../$$n" ] || ln -sfn "../../../$$n" "$$n"; \
+	done; \
+	for l in *; do \
+	  if [ -L "$$l" ] && [ ! -e "$$l" ]; then rm -f "$$l"; fi; \
+	done
+
+#    Built with the venv python, so the devel-space relays of scripts/*
+#    (what rosrun / roslaunch start) run with rospy AND pybullet.
+#    Up to date, catkin_make takes ~0.7 s; the stamp skips even that.
+CATKIN_MAKE = cd $(WS) && catkin_make --source $(WS)/src --build $(WS)/build \
+  -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(VENV_PY) \
+  -DCATKIN_ENABLE_TESTING=OFF -j2 > $(WS)/build.log 2>&1 \
+  || { tail -n 60 $(WS)/build.log; echo "catkin_make failed (full log: .ws/build.log)" >&2; exit 1; }
+
+$(STAMPS)/build: $(STAMPS)/venv $(BUILD_INPUTS) | link-package
+	$(CATKIN_MAKE)
+	@echo "build: ok (log in .ws/build.log)"
+	@touch $@
+
+build: $(STAMPS)/venv link-package
+	$(CATKIN_MAKE)
+	@echo "build: ok (log in .ws/build.log)"
+	@touch $(STAMPS)/build
+
+demo: setup
+	$(WS_SHELL) python3 -m arm1.demo
+
+test: setup
+	$(WS_SHELL) python test/run_all.py
+
+bench: setup
+	$(WS_SHELL) python -m arm1.bench
+
+clean:
+	rm -rf $(WS)
