@@ -1,0 +1,67 @@
+"""Helpers the rostest nodes share: collecting messages and waiting in sim or wall time."""
+import threading
+import time
+
+import rospy
+from rosgraph_msgs.msg import Clock
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import JointState
+
+JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
+
+
+class Recorder:
+    """Keeps every message of a topic (with its wall arrival time)."""
+
+    def __init__(self, topic, msg_type):
+        self.lock = threading.Lock()
+        self.msgs = []
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb, queue_size=1000)
+
+    def _cb(self, msg):
+        with self.lock:
+            self.msgs.append((time.monotonic(), msg))
+
+    def since(self, wall_time):
+        with self.lock:
+            return [m for t, m in self.msgs if t >= wall_time]
+
+    def last(self):
+        with self.lock:
+            return self.msgs[-1][1] if self.msgs else None
+
+    def clear(self):
+        with self.lock:
+            self.msgs = []
+
+
+def wait_for(predicate, timeout, poll=0.05):
+    """Wall-clock wait until predicate() is true; returns its last value."""
+    deadline = time.monotonic() + timeout
+    value = predicate()
+    while not value and time.monotonic() < deadline:
+        time.sleep(poll)
+        value = predicate()
+    return value
+
+
+def clock_recorder():
+    return Recorder('/clock', Clock)
+
+
+def joint_recorder(ns='/arm1'):
+    return Recorder(ns + '/joint_states', JointState)
+
+
+def rosout_recorder():
+    return Recorder('/rosout', Log)
+
+
+def positions(msg):
+    return dict(zip(msg.name, msg.position))
+
+
+def sim_wait(seconds):
+    """Sleep in sim time, but never longer than 20x that in wall time."""
+    start = rospy.Time.now()
+    wait_for(lambda: (rospy.Time.now() - start).to_sec() >= seconds, 20 * seconds + 5)
