@@ -34,8 +34,10 @@ class JointStateController(Controller):
     def update(self, time_ns, period):
         if self.period_ns is None:
             return
-        if self.last_publish_ns is None:
-            self.last_publish_ns = time_ns  # publish on the first update
+        if self.last_publish_ns is None or time_ns < self.last_publish_ns:
+            # First update, or time went back (reset_simulation): publish now, not once the
+            # old time is reached again.
+            self.last_publish_ns = time_ns
         elif self.last_publish_ns + self.period_ns < time_ns:
             self.last_publish_ns += self.period_ns  # advance by exactly one period: no drift
         else:

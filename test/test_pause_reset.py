@@ -1,0 +1,85 @@
+#!/usr/bin/env python
+"""Pause stops /clock and the joints, unpause resumes, reset brings time and joints back to zero."""
+import os
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+from std_msgs.msg import Float64
+from std_srvs.srv import Empty
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rostest_util import (JOINTS, clock_recorder, joint_recorder, positions,  # noqa: E402
+                          wait_for)
+from arm1.srv import ListControllers  # noqa: E402
+
+
+def call(name):
+    rospy.wait_for_service(name, 30)
+    rospy.ServiceProxy(name, Empty)()
+
+
+class PauseReset(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_pause_reset')
+        cls.clock = clock_recorder()
+        cls.states = joint_recorder()
+        cls.pub = rospy.Publisher('/arm1/joint1_position_controller/command', Float64,
+                                  queue_size=1, latch=True)
+        rospy.wait_for_service('/arm1/controller_manager/list_controllers', 60)
+        lc = rospy.ServiceProxy('/arm1/controller_manager/list_controllers', ListControllers)
+        assert wait_for(lambda: sum(c.state == 'running' for c in lc().controller) == 5, 60)
+
+    def joint1_at(self, target, tol=0.03, timeout=30):
+        return wait_for(lambda: self.states.last() is not None and
+                        abs(positions(self.states.last())['joint1'] - target) < tol, timeout)
+
+    def test_01_pause_and_unpause(self):
+        self.pub.publish(1.2)
+        wait_for(lambda: False, 0.2)
+        call('/gazebo/pause_physics')
+        time.sleep(0.3)  # let messages in flight arrive
+        mark = time.monotonic()
+        before = self.clock.last().clock
+        joints_before = positions(self.states.last())
+        time.sleep(1.0)
+        self.assertEqual(self.clock.last().clock, before, '/clock moved while paused')
+        self.assertEqual(self.states.since(mark), [], 'joint_states published while paused')
+        self.assertEqual(positions(self.states.last()), joints_before)
+        call('/gazebo/unpause_physics')
+        self.assertTrue(wait_for(lambda: (self.clock.last().clock - before).to_sec() > 0.5, 10),
+                        '/clock did not resume')
+        self.assertTrue(self.joint1_at(1.2), 'joint1 did not resume towards its target')
+
+    def test_02_reset_simulation(self):
+        self.pub.publish(1.0)
+        self.assertTrue(self.joint1_at(1.0))
+        self.assertGreater(self.clock.last().clock.to_sec(), 1.0)
+        mark = time.monotonic()
+        call('/gazebo/reset_simulation')
+        # Messages already in flight may carry the old time: take the first with the new one.
+        after = lambda: [m for m in self.states.since(mark) if m.header.stamp.to_sec() < 0.5]
+        self.assertTrue(wait_for(after, 5), 'no joint_states with the reset time')
+        first = after()[0]
+        for j in JOINTS:
+            self.assertAlmostEqual(positions(first)[j], 0.0, delta=0.05, msg=j)
+        self.assertTrue(wait_for(lambda: any(c.clock.to_sec() < 0.5 for c in self.clock.since(mark)),
+                                 5), '/clock was not reset')
+
+    def test_03_reset_world_keeps_time(self):
+        self.pub.publish(-1.0)
+        self.assertTrue(self.joint1_at(-1.0))
+        before = self.clock.last().clock.to_sec()
+        mark = time.monotonic()
+        call('/gazebo/reset_world')
+        self.assertTrue(wait_for(lambda: self.states.since(mark), 10))
+        first = self.states.since(mark)[0]
+        self.assertGreaterEqual(first.header.stamp.to_sec(), before, 'reset_world reset time')
+        self.assertAlmostEqual(positions(first)['joint1'], 0.0, delta=0.05)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('arm1', 'test_pause_reset', PauseReset)
