@@ -170,9 +170,8 @@ def parse_args(argv):
     return parser.parse_args(argv)
 
 
-def main(argv=None):
-    argv = rospy.myargv(sys.argv if argv is None else argv)[1:]
-    args = parse_args(argv)
+def start_world(args):
+    """Init the node and build the world of parsed gzserver ``args``: (api, pacer)."""
     rospy.init_node('gazebo')
     route_core_logs()
     try:
@@ -185,14 +184,18 @@ def main(argv=None):
             setattr(config, attr, getattr(args, attr))
     if config.skipped:
         rospy.logwarn('world: not built: %s', '; '.join('%s (%s)' % s for s in config.skipped))
-    sim = Simulation(config, gui=args.gui)
-    api = GazeboRosApi(sim, paused=args.paused)
+    api = GazeboRosApi(Simulation(config, gui=args.gui), paused=args.paused)
     period = wall_period(config.max_step_size, config.real_time_factor,
                          config.real_time_update_rate)
     rospy.loginfo('world ready: step %.4f s, real-time factor %g, update rate %g Hz%s',
                   config.max_step_size, config.real_time_factor, config.real_time_update_rate,
                   ' (paused)' if args.paused else '')
+    return api, Pacer(period)
+
+
+def main(argv=None):
+    api, pacer = start_world(parse_args(rospy.myargv(sys.argv if argv is None else argv)[1:]))
     try:
-        api.run(Pacer(period))
+        api.run(pacer)
     finally:
-        sim.close()
+        api.sim.close()
