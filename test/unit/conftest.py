@@ -1,0 +1,282 @@
+"""Shared fakes and fixtures for the ROS-free unit tests.
+
+Nothing here imports rospy: controllers and the controller manager talk to a
+``FakeRos`` (a parameter tree plus recorded publishers and subscribers) through
+``FakeNodeHandle``s, which implement the node-handle contract of
+``arm1/control/controller.py``.
+"""
+import os
+import sys
+import threading
+import time
+
+import pytest
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SRC = os.path.join(REPO_ROOT, 'src')
+if SRC not in sys.path:
+    sys.path.insert(0, SRC)
+
+ARM1_XACRO = os.path.join(REPO_ROOT, 'urdf', 'arm1.urdf.xacro')
+CONTROLLERS_YAML = os.path.join(REPO_ROOT, 'config', 'controllers.yaml')
+WORLD_FILE = os.path.join(REPO_ROOT, 'worlds', 'willow_garage.world')
+
+JPC = 'effort_controllers/JointPositionController'
+JSC = 'joint_state_controller/JointStateController'
+
+
+# --------------------------------------------------------------------------- node handles
+class FakePublisher:
+    def __init__(self, topic, type_name, queue_size):
+        self.topic, self.type_name, self.queue_size = topic, type_name, queue_size
+        self.messages = []
+
+    def publish(self, fields):
+        self.messages.append(fields)
+
+
+class FakeNodeHandle:
+    """``namespace``, ``params`` (the subtree at the namespace), advertise, subscribe, shutdown."""
+
+    def __init__(self, ros, namespace):
+        self.ros = ros
+        self.namespace = namespace.rstrip('/') or '/'
+        self.params = ros.get_param(self.namespace)
+        self.publishers = []
+        self.subscriptions = []
+        self.is_shutdown = False
+        ros.handles.append(self)
+
+    def resolve(self, topic):
+        return topic if topic.startswith('/') else '%s/%s' % (self.namespace.rstrip('/'), topic)
+
+    def advertise(self, topic, type_name, queue_size):
+        pub = FakePublisher(self.resolve(topic), type_name, queue_size)
+        self.publishers.append(pub)
+        self.ros.publishers.setdefault(pub.topic, []).append(pub)
+        return pub
+
+    def subscribe(self, topic, type_name, callback):
+        name = self.resolve(topic)
+        self.subscriptions.append((name, callback))
+        self.ros.subscribers.setdefault(name, []).append(callback)
+        return callback
+
+    def shutdown(self):
+        self.is_shutdown = True
+        for name, cb in self.subscriptions:
+            self.ros.subscribers[name].remove(cb)
+        for pub in self.publishers:
+            self.ros.publishers[pub.topic].remove(pub)
+        self.subscriptions, self.publishers = [], []
+
+
+class FakeRos:
+    """A parameter server and a topic graph made of lists."""
+
+    def __init__(self, params=None):
+        self.params = params if params is not None else {}
+        self.handles = []
+        self.publishers = {}  # topic -> [FakePublisher]
+        self.subscribers = {}  # topic -> [callback]
+
+    def get_param(self, namespace):
+        node = self.params
+        for part in [p for p in namespace.split('/') if p]:
+            if not isinstance(node, dict) or part not in node:
+                return {}
+            node = node[part]
+        return node if isinstance(node, dict) else {}
+
+    def node_handle(self, namespace):
+        """The ``node_factory`` a ControllerManager takes."""
+        return FakeNodeHandle(self, namespace)
+
+    def publish(self, topic, value):
+        """Deliver ``value`` to every subscriber of ``topic``; how many got it."""
+        callbacks = list(self.subscribers.get(topic, []))
+        for cb in callbacks:
+            cb(value)
+        return len(callbacks)
+
+    def messages(self, topic):
+        out = []
+        for pub in self.publishers.get(topic, []):
+            out.extend(pub.messages)
+        return out
+
+
+# --------------------------------------------------------------------------- physics fakes
+class FakeRobot:
+    """Stands in for physics.robot.Robot under DefaultRobotHWSim."""
+
+    def __init__(self, joint_names):
+        self.joint_index = {n: i for i, n in enumerate(joint_names)}
+        self.state = {i: (0.0, 0.0) for i in self.joint_index.values()}
+        self.applied = []  # [(indices, efforts)] per write
+
+    def indices(self, names):
+        return [self.joint_index[n] for n in names]
+
+    def read(self, indices):
+        return [self.state[i] for i in indices]
+
+    def apply_efforts(self, indices, efforts):
+        self.applied.append((list(indices), list(efforts)))
+
+    def set(self, name, position, velocity=0.0):
+        self.state[self.joint_index[name]] = (position, velocity)
+
+
+# --------------------------------------------------------------------------- URDF snippets
+def transmission(joint, interface='hardware_interface/EffortJointInterface', name=None):
+    return """
+  <transmission name="%s">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="%s"><hardwareInterface>%s</hardwareInterface></joint>
+    <actuator name="m_%s"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>""" % (name or 'tran_' + joint, joint, interface, joint)
+
+
+def box_link(name, size='0.1 0.1 0.1', mass=0.5, xyz='0 0 0'):
+    sx, sy, sz = (float(v) for v in size.split())
+    ixx, iyy, izz = (mass / 12.0 * (b * b + c * c) for b, c in ((sy, sz), (sx, sz), (sx, sy)))
+    return """
+  <link name="%s">
+    <inertial><origin xyz="%s"/><mass value="%g"/>
+      <inertia ixx="%g" ixy="0" ixz="0" iyy="%g" iyz="0" izz="%g"/></inertial>
+    <visual><origin xyz="%s"/><geometry><box size="%s"/></geometry></visual>
+    <collision><origin xyz="%s"/><geometry><box size="%s"/></geometry></collision>
+  </link>""" % (name, xyz, mass, ixx, iyy, izz, xyz, size, xyz, size)
+
+
+def cylinder_link(name, radius=0.05, length=0.02, mass=0.5):
+    izz = 0.5 * mass * radius ** 2
+    ixx = mass * (3 * radius ** 2 + length ** 2) / 12.0
+    return """
+  <link name="%s">
+    <inertial><mass value="%g"/>
+      <inertia ixx="%g" ixy="0" ixz="0" iyy="%g" iyz="0" izz="%g"/></inertial>
+    <visual><geometry><cylinder radius="%g" length="%g"/></geometry></visual>
+    <collision><geometry><cylinder radius="%g" length="%g"/></geometry></collision>
+  </link>""" % (name, mass, ixx, ixx, izz, radius, length, radius, length)
+
+
+def control_plugin(namespace):
+    inner = '<robotNamespace>%s</robotNamespace>' % namespace if namespace is not None else ''
+    return """
+  <gazebo>
+    <plugin name="gazebo_ros_control" filename="libgazebo_ros_control.so">%s
+      <robotSimType>gazebo_ros_control/DefaultRobotHWSim</robotSimType>
+    </plugin>
+  </gazebo>""" % inner
+
+
+# A robot with one joint of each actuated kind, geometry made of primitives only.
+#   world -fixed- base -continuous(z)- wheel
+#                      -prismatic(x)-  slider  [-0.1, 0.2] m
+#                      -revolute(z)-   flap    [-3, 3] rad (limits almost the full circle)
+#                      -revolute(z)-   passive (PositionJointInterface: not simulated)
+MIXED_URDF = ('<?xml version="1.0"?>\n<robot name="mixed">\n  <link name="world"/>'
+              + box_link('base', '0.2 0.2 0.05', 2.0)
+              + cylinder_link('wheel')
+              + box_link('slider', '0.05 0.05 0.05', 0.5)
+              + box_link('flap', '0.1 0.02 0.02', 0.2, xyz='0.05 0 0')
+              + box_link('passive_link', '0.02 0.02 0.02', 0.05) + """
+  <joint name="fixed_base_joint" type="fixed">
+    <parent link="world"/><child link="base"/><origin xyz="0 0 0.5"/>
+  </joint>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base"/><child link="wheel"/><origin xyz="0 0 0.1"/>
+    <axis xyz="0 0 1"/><limit effort="1" velocity="20"/>
+  </joint>
+  <joint name="slider_joint" type="prismatic">
+    <parent link="base"/><child link="slider"/><origin xyz="0 0 -0.1"/>
+    <axis xyz="1 0 0"/><limit lower="-0.1" upper="0.2" effort="10" velocity="1"/>
+  </joint>
+  <joint name="flap_joint" type="revolute">
+    <parent link="base"/><child link="flap"/><origin xyz="0 0 0.3"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="20"/>
+  </joint>
+  <joint name="passive_joint" type="revolute">
+    <parent link="base"/><child link="passive_link"/><origin xyz="0.2 0 0"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>"""
+              + transmission('wheel_joint', 'EffortJointInterface')
+              + transmission('slider_joint')
+              + transmission('flap_joint')
+              + transmission('passive_joint', 'hardware_interface/PositionJointInterface')
+              + control_plugin('/mixed_ns') + '\n</robot>\n')
+
+MIXED_GAINS = {
+    'wheel_joint': {'p': 2.0, 'd': 0.1},
+    'slider_joint': {'p': 100.0, 'd': 20.0},
+    'flap_joint': {'p': 1.0, 'd': 0.1},
+}
+
+
+def mixed_params():
+    ns = {'joint_state_controller': {'type': JSC, 'publish_rate': 100}}
+    for joint, gains in MIXED_GAINS.items():
+        ns[joint.replace('_joint', '') + '_controller'] = {
+            'type': JPC, 'joint': joint, 'pid': dict(gains)}
+    return {'mixed_ns': ns}
+
+
+# --------------------------------------------------------------------------- helpers
+def pump_switch(cm, start, stop=(), strictness=2, timeout=0.0, time_ns=0, period=0.001,
+                deadline=2.0):
+    """Call ``cm.switch_controller`` from a thread, as a ROS service would, while this
+    thread keeps calling ``cm.update`` (the simulation loop). Returns what the call returned
+    and how many updates ran before it did."""
+    result = []
+    t = threading.Thread(
+        target=lambda: result.append(cm.switch_controller(list(start), list(stop), strictness,
+                                                          timeout)), daemon=True)
+    t.start()
+    updates = 0
+    end = time.monotonic() + deadline
+    while t.is_alive() and time.monotonic() < end:
+        cm.update(time_ns, period)
+        updates += 1
+        t.join(0.002)
+    assert not t.is_alive(), 'switch_controller did not return while updates ran'
+    return result[0], updates
+
+
+# --------------------------------------------------------------------------- fixtures
+@pytest.fixture
+def fake_ros():
+    return FakeRos()
+
+
+@pytest.fixture(scope='session')
+def arm1_urdf():
+    """The arm1 description expanded by PyPI's xacro with ``$(find arm1)`` = this repo."""
+    import xacro
+    import xacro.substitution_args as sa
+    saved = sa._eval_find, sa._eval_dict.get('find')
+    sa._eval_find = lambda pkg: REPO_ROOT
+    sa._eval_dict['find'] = sa._eval_find
+    try:
+        return xacro.process_file(ARM1_XACRO).toprettyxml()
+    finally:
+        sa._eval_find = saved[0]
+        sa._eval_dict['find'] = saved[1]
+
+
+@pytest.fixture(scope='session')
+def controllers_params():
+    """config/controllers.yaml as the parameter server would hold it."""
+    import yaml
+    with open(CONTROLLERS_YAML) as f:
+        return yaml.safe_load(f)
+
+
+@pytest.fixture
+def find_package():
+    def find(pkg):
+        if pkg == 'arm1':
+            return REPO_ROOT
+        raise LookupError(pkg)
+    return find

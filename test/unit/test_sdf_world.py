@@ -1,0 +1,107 @@
+"""physics/sdf_world.py: what a Gazebo world file gives the pybullet world."""
+import pytest
+
+from arm1.physics.sdf_world import SdfError, WorldConfig, parse_world, read_world
+from conftest import WORLD_FILE
+
+
+def world(body):
+    return '<sdf version="1.6"><world name="default">%s</world></sdf>' % body
+
+
+def test_the_projects_world_file():
+    cfg = read_world(WORLD_FILE)
+    assert cfg.max_step_size == pytest.approx(0.001)
+    assert cfg.real_time_factor == pytest.approx(1.0)
+    assert cfg.real_time_update_rate == pytest.approx(1000.0)
+    assert cfg.gravity == (0.0, 0.0, -9.8)
+    assert [m.name for m in cfg.models] == ['ground_plane']
+    ground = cfg.models[0]
+    assert [(s.kind, s.size) for s in ground.shapes] == [('plane', (0.0, 0.0, 1.0))]
+    names = [name for name, _ in cfg.skipped]
+    assert names == ['willowgarage']
+    assert 'model://willowgarage' in cfg.skipped[0][1]
+
+
+def test_physics_block_and_gravity():
+    cfg = parse_world(world("""
+        <gravity>0 0 -1.62</gravity>
+        <physics name="p" type="ode"><max_step_size>0.002</max_step_size>
+          <real_time_factor>0.5</real_time_factor>
+          <real_time_update_rate>0</real_time_update_rate></physics>"""))
+    assert (cfg.max_step_size, cfg.real_time_factor, cfg.real_time_update_rate) == (0.002, 0.5, 0.0)
+    assert cfg.gravity == (0.0, 0.0, -1.62)
+
+
+def test_defaults_are_gazebos():
+    cfg = parse_world(world(''))
+    d = WorldConfig()
+    assert (cfg.max_step_size, cfg.real_time_factor, cfg.real_time_update_rate) == (0.001, 1.0, 1000.0)
+    assert cfg.gravity == d.gravity == (0.0, 0.0, -9.8)
+    assert cfg.models == [] and cfg.skipped == []
+
+
+def test_include_is_skipped_with_its_name_or_uri():
+    cfg = parse_world(world("""
+        <include><uri>model://sun</uri></include>
+        <include><uri>model://table</uri><name>my_table</name></include>"""))
+    assert [n for n, _ in cfg.skipped] == ['model://sun', 'my_table']
+    assert all('cannot fetch' in why for _, why in cfg.skipped)
+
+
+def test_static_primitive_models_are_built_and_poses_added():
+    cfg = parse_world(world("""
+      <model name="block"><static>true</static><pose>1 2 0 0 0 0</pose>
+        <link name="l"><pose>0 0 0.5 0 0 0</pose>
+          <collision name="c"><pose>0.1 0 0 0 0 0</pose>
+            <geometry><box><size>1 2 3</size></box></geometry></collision>
+          <collision name="c2"><geometry><sphere><radius>0.2</radius></sphere></geometry></collision>
+          <collision name="c3"><geometry><cylinder><radius>0.1</radius><length>0.4</length>
+            </cylinder></geometry></collision>
+        </link></model>"""))
+    m = cfg.models[0]
+    assert m.name == 'block' and m.pose == (1.0, 2.0, 0.0, 0.0, 0.0, 0.0)
+    assert [(s.kind, s.size) for s in m.shapes] == [
+        ('box', (1.0, 2.0, 3.0)), ('sphere', (0.2,)), ('cylinder', (0.1, 0.4))]
+    assert m.shapes[0].pose[:3] == pytest.approx((0.1, 0.0, 0.5))
+
+
+def test_unbuildable_models_are_skipped_with_a_reason():
+    cfg = parse_world(world("""
+      <model name="dynamic_box"><link name="l"><collision name="c">
+        <geometry><box><size>1 1 1</size></box></geometry></collision></link></model>
+      <model name="meshy"><static>1</static><link name="l"><collision name="c">
+        <geometry><mesh><uri>model://x/m.dae</uri></mesh></geometry></collision></link></model>
+      <model name="ghost"><static>true</static><link name="l"/></model>"""))
+    assert cfg.models == []
+    reasons = dict(cfg.skipped)
+    assert 'static' in reasons['dynamic_box']
+    assert 'geometry' in reasons['meshy']
+    assert 'no collision' in reasons['ghost']
+
+
+def test_malformed_xml_names_the_source_and_the_parser_message():
+    with pytest.raises(SdfError) as exc:
+        parse_world('<sdf><world name="w"><physics></world></sdf>', 'broken.world')
+    assert 'broken.world' in str(exc.value)
+    assert 'mismatched tag' in str(exc.value)
+
+
+def test_missing_world_element():
+    with pytest.raises(SdfError, match='<sdf><world>'):
+        parse_world('<sdf version="1.6"><model name="m"/></sdf>', 'm.sdf')
+
+
+@pytest.mark.parametrize('body, culprit', [
+    ('<gravity>0 0</gravity>', 'gravity'),
+    ('<physics><max_step_size>fast</max_step_size></physics>', 'max_step_size'),
+    ('<physics><max_step_size>0</max_step_size></physics>', 'max_step_size'),
+])
+def test_bad_numbers_name_the_element(body, culprit):
+    with pytest.raises(SdfError, match=culprit):
+        parse_world(world(body), 'w.world')
+
+
+def test_unreadable_file(tmp_path):
+    with pytest.raises(SdfError, match='cannot read world file'):
+        read_world(str(tmp_path / 'nope.world'))
