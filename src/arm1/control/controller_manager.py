@@ -40,7 +40,8 @@ class ControllerManager:
         self._lock = threading.Lock()
         self._loaded = {}  # name -> _Loaded, in load order
         self._running = ()  # snapshot the update thread iterates
-        self._pending = None  # (start, stop, done Event, result list)
+        self._loading = set()  # names being initialised, so a second load is refused
+        self._pending = []  # switch requests (start, stop, done Event, result), in order
 
     # -- requests (any thread) ------------------------------------------------
     def controller_types(self):
@@ -48,9 +49,17 @@ class ControllerManager:
 
     def load_controller(self, name):
         with self._lock:
-            if name in self._loaded:
+            if name in self._loaded or name in self._loading:
                 raise ControllerManagerError(
                     "A controller named '%s' was already loaded inside the controller manager" % name)
+            self._loading.add(name)
+        try:
+            return self._load(name)
+        finally:
+            with self._lock:
+                self._loading.discard(name)
+
+    def _load(self, name):
         ns = '%s/%s' % (self.namespace, name)
         controller_nh = self.node_factory(ns)
         type_name = controller_nh.params.get('type')
@@ -106,13 +115,12 @@ class ControllerManager:
                 return False
             if not start and not stop:
                 return True
-            done = threading.Event()
-            self._pending = (start, stop, done)
+            done, result = threading.Event(), []
+            self._pending.append((start, stop, done, result))
         if done.wait(timeout if timeout and timeout > 0 else None):
-            return True
+            return result[0]
         with self._lock:
-            if self._pending and self._pending[2] is done:
-                self._pending = None
+            self._pending = [r for r in self._pending if r[2] is not done]
         log.error('Switching controllers timed out after %.3f s (is physics paused?)', timeout)
         return False
 
@@ -156,8 +164,8 @@ class ControllerManager:
 
     # -- simulation thread ----------------------------------------------------
     def update(self, time_ns, period, reset_controllers=False):
-        if self._pending is not None:
-            self._apply_switch(time_ns)
+        if self._pending:
+            self._apply_switches(time_ns)
         if reset_controllers:
             for c in self._running:
                 c.stopping(time_ns)
@@ -165,18 +173,26 @@ class ControllerManager:
         for c in self._running:
             c.update(time_ns, period)
 
-    def _apply_switch(self, time_ns):
+    def _apply_switches(self, time_ns):
         with self._lock:
-            start, stop, done = self._pending
-            self._pending = None
-            for entry in stop:
-                entry.controller.stopping(time_ns)
-                entry.state = 'stopped'
-                for joint in entry.controller.joints:
-                    joint.command = 0.0  # a stopped effort controller leaves no effort behind
-            for entry in start:
-                entry.controller.starting(time_ns)
-                entry.state = 'running'
-            self._running = tuple(e.controller for e in self._loaded.values() if e.state == 'running')
-        done.set()
-
+            requests, self._pending = self._pending, []
+            for start, stop, _, result in requests:
+                # Checked again here: an earlier request may have claimed the same joints.
+                conflict = self._resource_conflict(start, stop)
+                if conflict:
+                    log.error('Could not switch controllers: %s', conflict)
+                    result.append(False)
+                    continue
+                result.append(True)
+                for entry in stop:
+                    entry.controller.stopping(time_ns)
+                    entry.state = 'stopped'
+                    for joint in entry.controller.joints:
+                        joint.command = 0.0  # a stopped effort controller leaves no effort
+                for entry in start:
+                    entry.controller.starting(time_ns)
+                    entry.state = 'running'
+            self._running = tuple(e.controller for e in self._loaded.values()
+                                  if e.state == 'running')
+        for request in requests:
+            request[2].set()
