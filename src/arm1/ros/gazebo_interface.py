@@ -134,6 +134,14 @@ class GazeboRosApi:
         self._clock_pub.publish(Clock(to_time(self.sim.time_ns)))
 
     def run(self, pacer):
+        """Step until ROS shuts down."""
+        try:
+            self._loop(pacer)
+        except rospy.ROSException:
+            if not rospy.is_shutdown():
+                raise  # publishing raises once shutdown has closed the topics
+
+    def _loop(self, pacer):
         sim, calls, clock_period = self.sim, self._calls, self.clock_period_ns
         last_clock = None
         self.publish_clock()
