@@ -20,6 +20,7 @@ from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from ..pacer import Pacer, RealTimeFactorMeter, wall_period
 from ..physics.sdf_world import SdfError, WorldConfig, read_world
 from ..simulation import Simulation, SpawnError
+from .camera_plugin import GazeboRosCamera
 from .controller_manager_interface import ControllerManagerInterface
 from .node_handle import route_core_logs, to_time
 
@@ -42,6 +43,7 @@ class GazeboRosApi:
         self._calls = collections.deque()
         self._find_package = PackageFinder()
         self._cm_interfaces = {}
+        self._cameras = {}  # model name -> [GazeboRosCamera]
         self.clock_period_ns = int(1e9 / max(1e-3, float(rospy.get_param('~pub_clock_frequency', 100))))
         self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
         self._rtf_pub = rospy.Publisher('~real_time_factor', Float64, queue_size=1, latch=True)
@@ -99,6 +101,9 @@ class GazeboRosApi:
         msg = "SpawnModel: Successfully spawned entity '%s'" % model.name
         if model.controller_manager is not None:
             msg += ' with controller manager in %s' % model.namespace
+        self._cameras[model.name] = [GazeboRosCamera(c) for c in model.cameras]
+        for c in model.cameras:
+            msg += '; camera %s on %s' % (c.sensor.name, c.sensor.image_topic)
         rospy.loginfo(msg)
         return True, msg
 
@@ -119,6 +124,8 @@ class GazeboRosApi:
         interface = self._cm_interfaces.pop(model.namespace, None)
         if interface:
             interface.shutdown()
+        for camera in self._cameras.pop(model.name, []):
+            camera.shutdown()
         return True, "DeleteModel: successfully deleted model '%s'" % req.model_name
 
     def _configure(self, req):
@@ -138,14 +145,14 @@ class GazeboRosApi:
         try:
             self._loop(pacer)
         except rospy.ROSException:
-            if not rospy.is_shutdown():
-                raise  # publishing raises once shutdown has closed the topics
+            if not rospy.core.is_shutdown_requested():
+                raise  # publishing raises once shutdown has begun closing the topics
 
     def _loop(self, pacer):
         sim, calls, clock_period = self.sim, self._calls, self.clock_period_ns
         last_clock = None
         self.publish_clock()
-        while not rospy.is_shutdown():
+        while not rospy.core.is_shutdown_requested():
             while calls:
                 calls.popleft()()
             if self.paused:

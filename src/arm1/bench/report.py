@@ -1,0 +1,119 @@
+"""The benchmark's table (BENCHMARKS.md) and plot (bench/bench.png) from results.json's data."""
+import os
+
+# (label, figure, field, goal text, check(median) -> bool or None, format)
+ROWS = [
+    ('real-time factor over the run, at factor 1', 'realtime', 'rtf', '1.00 ± 0.01',
+     lambda v: abs(v - 1.0) <= 0.01, '%.4f'),
+    ('joint_states rate in sim time (Hz)', 'realtime', 'joint_states_hz', '50 ± 0.5 %',
+     lambda v: abs(v - 50.0) <= 0.25, '%.3f'),
+    ('world CPU at real time (fraction of a core)', 'realtime', 'cpu_core_fraction', '≤ 0.10',
+     lambda v: v <= 0.10, '%.3f'),
+    ('world peak resident memory (MB)', 'realtime', 'peak_rss_mb', '≤ 200',
+     lambda v: v <= 200, '%.0f'),
+    ('bare pybullet loop (steps/s)', 'bare', 'steps_per_s', 'the ceiling', None, '%.0f'),
+    ('stand-in top speed, 1 arm (steps/s)', 'standin_1', 'steps_per_s', '', None, '%.0f'),
+    ('stand-in / bare speed ratio', 'speed_ratio', None, '≥ 0.6', lambda v: v >= 0.6, '%.2f'),
+    ('stand-in top speed, 2 arms (steps/s)', 'standin_2', 'steps_per_s', '', None, '%.0f'),
+    ('stand-in top speed, 4 arms (steps/s)', 'standin_4', 'steps_per_s', '', None, '%.0f'),
+    ('stand-in top speed, 8 arms (steps/s)', 'standin_8', 'steps_per_s', '', None, '%.0f'),
+    ('start-up: roslaunch to first joint_states (s)', 'startup', 'startup_s', '≤ 3',
+     lambda v: v <= 3.0, '%.2f'),
+    ('command latency p50 (ms)', 'latency', 'p50_ms', '', None, '%.3f'),
+    ('command latency p99 (ms)', 'latency', 'p99_ms', '≤ 2', lambda v: v <= 2.0, '%.3f'),
+]
+
+
+def rows(results):
+    fig = results['figures']
+    for label, key, field, goal, check, fmt in ROWS:
+        if key not in fig:
+            continue
+        value = fig[key] if field is None else fig[key].get(field)
+        if value is None:
+            continue
+        median = value['median']
+        spread = ('%s – %s (%d runs)' % (fmt % value['min'], fmt % value['max'], value['runs'])
+                  if 'min' in value else '')
+        verdict = '' if check is None else ('met' if check(median) else 'NOT met')
+        yield label, fmt % median, spread, goal, verdict
+
+
+def table(results):
+    lines = ['| figure | median | spread | goal | |', '|---|---|---|---|---|']
+    lines += ['| %s | %s | %s | %s | %s |' % r for r in rows(results)]
+    return '\n'.join(lines)
+
+
+def write_markdown(results, path):
+    m = results['machine']
+    text = table(results)
+    with open(path, 'w') as f:
+        f.write('# Benchmarks\n\n'
+                'Made by `make bench` (`python -m arm1.bench`); the raw numbers are in '
+                '`bench/results.json`, the plot in `bench/bench.png`. Every figure below comes '
+                'from one run of that command, the stand-in and the bare pybullet loop measured '
+                'side by side.\n\n'
+                'Machine: %s, %s cores, Linux %s, Python %s, pybullet %s; %s.%s\n\n'
+                % (m['cpu'] or 'unknown CPU', m['cores'], m['kernel'], m['python'], m['pybullet'],
+                   m['date'], ' **Quick run (smoke): one short run each.**' if results['quick']
+                   else ''))
+        f.write(text + '\n')
+        f.write(METHOD)
+    return text
+
+
+METHOD = '''
+## How each figure is measured
+
+- **bare pybullet loop**: arm1 (same URDF and meshes) in pybullet DIRECT, a ground plane; each
+  step reads the four joints, computes a PD in plain Python, applies the torques and steps.
+  No ROS, none of our classes: the ceiling for anything built on pybullet in Python.
+- **stand-in top speed**: the world node's own code (`start_world`, `GazeboRosApi.run`) with
+  `real_time_update_rate` 0, all five controllers running, `/clock` at 100 Hz sim time and
+  joint_states at 50 Hz sim time with a subscriber in another process (`rostopic hz`, as
+  robot_state_publisher would be). N arms: N copies of arm1, each in its own namespace
+  (`/arm1` … `/armN`) with its own controller manager and five controllers.
+- **real time**: `roslaunch arm1 gazebo.launch gui:=false`, watched from another process:
+  real-time factor = sim time advanced (from `/clock`) over wall time, joint_states rate =
+  messages over their sim-time span; CPU = user+system time of the world process (`/gazebo`)
+  over wall time; peak memory = its VmHWM.
+- **start-up**: from starting `roslaunch arm1 gazebo.launch gui:=false` (master included,
+  nothing running before) to the first `/arm1/joint_states` message.
+- **command latency**: a separate process publishes 1 000 distinct joint1 targets at 100 Hz;
+  the world records the wall time of the first control update that uses each one.
+'''
+
+
+def write_plot(results, path):
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    raw = results['raw']
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    keys = [k for k in ('bare', 'standin_1', 'standin_2', 'standin_4', 'standin_8') if k in raw]
+    labels = ['bare\npybullet' if k == 'bare' else '%s arm%s' % (k[-1], '' if k[-1] == '1' else 's')
+              for k in keys]
+    for x, k in enumerate(keys):
+        values = [r['steps_per_s'] / 1000.0 for r in raw[k]]
+        axes[0].scatter([x] * len(values), values, color='tab:blue' if k != 'bare' else 'tab:gray')
+        axes[0].bar(x, sorted(values)[len(values) // 2], alpha=0.3,
+                    color='tab:blue' if k != 'bare' else 'tab:gray')
+    axes[0].axhline(1.0, color='tab:red', lw=1, ls='--', label='real time (1 kHz step)')
+    axes[0].set_xticks(range(len(keys)), labels)
+    axes[0].set_ylabel('thousand steps per wall second')
+    axes[0].set_title('Top speed (median bar, each run a dot)')
+    axes[0].legend()
+    if 'realtime' in raw:
+        rtf = [r['rtf'] for r in raw['realtime']]
+        cpu = [r['cpu_core_fraction'] for r in raw['realtime']]
+        axes[1].bar(['real-time\nfactor', 'CPU\n(cores)'], [sorted(rtf)[len(rtf) // 2],
+                                                             sorted(cpu)[len(cpu) // 2]],
+                    color=['tab:green', 'tab:orange'])
+        axes[1].axhline(1.0, color='tab:green', lw=1, ls='--')
+        axes[1].axhline(0.10, color='tab:orange', lw=1, ls='--')
+        axes[1].set_title('At real time (goal lines dashed)')
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
