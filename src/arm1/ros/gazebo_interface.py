@@ -11,6 +11,7 @@ import time
 
 import rospkg
 import rospy
+import rospy.impl.simtime
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
@@ -22,7 +23,7 @@ from ..physics.sdf_world import SdfError, WorldConfig, read_world
 from ..simulation import Simulation, SpawnError
 from .camera_plugin import GazeboRosCamera
 from .controller_manager_interface import ControllerManagerInterface
-from .node_handle import route_core_logs, to_time
+from .node_handle import route_core_logs, synchronous_publisher, to_time
 
 
 class PackageFinder:
@@ -45,7 +46,8 @@ class GazeboRosApi:
         self._cm_interfaces = {}
         self._cameras = {}  # model name -> [GazeboRosCamera]
         self.clock_period_ns = int(1e9 / max(1e-3, float(rospy.get_param('~pub_clock_frequency', 100))))
-        self._clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
+        self._clock_pub = synchronous_publisher('/clock', Clock)
+        self._own_clock = self._stop_listening_to_own_clock()
         self._rtf_pub = rospy.Publisher('~real_time_factor', Float64, queue_size=1, latch=True)
         self.rtf = RealTimeFactorMeter()
         self._services = [
@@ -138,7 +140,24 @@ class GazeboRosApi:
 
     # -- main thread ------------------------------------------------------------
     def publish_clock(self):
-        self._clock_pub.publish(Clock(to_time(self.sim.time_ns)))
+        now = to_time(self.sim.time_ns)
+        self._clock_pub.publish(Clock(now))
+        if self._own_clock:
+            rospy.rostime._set_rostime(now)  # this node's own sim time, without the round trip
+
+    @staticmethod
+    def _stop_listening_to_own_clock():
+        """With use_sim_time, rospy subscribes this node to /clock: to its own messages.
+
+        Receiving each one back costs a thread wake-up and the GIL on the physics
+        thread; the world sets its own time instead. Returns True when it did.
+        """
+        sub = rospy.impl.simtime._clock_sub
+        if sub is None:
+            return False
+        sub.unregister()
+        rospy.impl.simtime._clock_sub = None
+        return True
 
     def run(self, pacer):
         """Step until ROS shuts down."""
