@@ -1,6 +1,7 @@
 """effort_controllers/JointPositionController: a PID from position error to effort."""
 import logging
 import math
+import threading
 import time
 
 from .angles import shortest_angular_distance, shortest_angular_distance_with_large_limits
@@ -12,6 +13,7 @@ log = logging.getLogger('arm1.control')
 
 STATE_PUBLISH_DIVIDER = 10  # state goes out every 10th update, as in ros_controllers
 WARN_PERIOD = 5.0  # seconds between repeated warnings of one kind
+GAIN_KEYS = ('p', 'i', 'd', 'i_clamp_max', 'i_clamp_min', 'antiwindup')  # as Pid.gains()
 
 
 class JointPositionController(Controller):
@@ -28,18 +30,45 @@ class JointPositionController(Controller):
         self._last_warn = -math.inf
         self._state_pub = None
         self.last_state = None
+        self._gains_lock = threading.Lock()
+        self._pending_gains = None  # set by set_gains (any thread), applied by update
 
     def init(self, robot_hw, root_nh, controller_nh):
         ns = controller_nh.namespace
         joint_name = require_param(controller_nh.params, 'joint', ns)
         self.joint = robot_hw.get_handle(joint_name, self.interface, ns)
         self.joints = [self.joint]
+        self._bind_joint_rules()
         try:
             self.pid = Pid.from_params(controller_nh.params.get('pid'), ns + '/pid')
         except PidConfigError as exc:
             raise ControllerError(str(exc))
         self._state_pub = controller_nh.advertise('state', 'arm1/JointControllerState', 1)
         controller_nh.subscribe('command', 'std_msgs/Float64', self.set_command)
+        # Live gains at <controller>/pid, as control_toolbox's Pid serves them with
+        # dynamic_reconfigure; a node handle without ``serve_config`` offers none.
+        serve_config = getattr(controller_nh, 'serve_config', None)
+        if serve_config is not None:
+            serve_config('pid', 'arm1/Pid', self.pid.gains(), self.set_gains)
+
+    def set_gains(self, gains):
+        """New PID gains (keys of Pid.gains(); missing ones keep their value). Thread-safe:
+        they take effect at the next update. Returns the gains that will apply; invalid ones
+        (non-finite, i_clamp_min > i_clamp_max) are refused and the gains in force returned."""
+        with self._gains_lock:
+            current = dict(self._pending_gains or self.pid.gains())
+            new = dict(current)
+            for key in GAIN_KEYS:
+                if key in gains:
+                    new[key] = bool(gains[key]) if key == 'antiwindup' else float(gains[key])
+            bad = [k for k in GAIN_KEYS if not math.isfinite(new[k])]
+            if bad or new['i_clamp_min'] > new['i_clamp_max']:
+                log.error('%s: refusing pid gains %s (%s); keeping %s', self.name, new,
+                          'non-finite ' + ', '.join(bad) if bad else 'i_clamp_min > i_clamp_max',
+                          current)
+                return current
+            self._pending_gains = new
+            return dict(new)
 
     def set_command(self, position):
         """Called from the ROS thread; a non-finite target is refused and the last one held."""
@@ -64,6 +93,16 @@ class JointPositionController(Controller):
     def stopping(self, time_ns):
         self._started = False
 
+    def _bind_joint_rules(self):
+        """Decide once, not every update, how this joint's target is clamped and its error taken."""
+        j, lim = self.joint, self.joint.limits
+        clamped = j.type in ('revolute', 'prismatic') and lim.has_position_limits
+        self._lower, self._upper = (lim.lower, lim.upper) if clamped else (-math.inf, math.inf)
+        # For a target clamped inside limits narrower than a full turn, the angles package's
+        # shortest distance within the limits is the plain difference: skip the general rule.
+        self._plain_error = j.type == 'prismatic' or (
+            j.type == 'revolute' and clamped and lim.upper - lim.lower < 2 * math.pi)
+
     def enforce_joint_limits(self, position):
         limits = self.joint.limits
         if self.joint.type in ('revolute', 'prismatic') and limits.has_position_limits:
@@ -80,8 +119,13 @@ class JointPositionController(Controller):
         return set_point - j.position
 
     def update(self, time_ns, period):
-        set_point = self.enforce_joint_limits(self.command)
-        error = self.error(set_point)
+        if self._pending_gains is not None:
+            with self._gains_lock:
+                gains, self._pending_gains = self._pending_gains, None
+            self.pid.set_gains(gains['p'], gains['i'], gains['d'], gains['i_clamp_max'],
+                               gains['i_clamp_min'], gains['antiwindup'])
+        set_point = min(max(self.command, self._lower), self._upper)
+        error = set_point - self.joint.position if self._plain_error else self.error(set_point)
         effort = self.pid.compute_command(error, period)
         self.joint.command = effort
         if self._loop_count % STATE_PUBLISH_DIVIDER == 0:
