@@ -1,4 +1,4 @@
-"""Every test of the package: the unit tests (pytest), then each rostest suite in test/*.test.
+"""Every test of the package: test/unit and test/integration (pytest), then each test/*.test (rostest).
 
 Run inside the sourced workspace (``make test`` does). Prints each suite's
 outcome as it goes and ends with one line ``N passed, N failed``; exits
@@ -27,13 +27,14 @@ def count_junit(path):
     return passed, failed, names
 
 
-def run_unit(out):
-    xml = os.path.join(out, 'unit.xml')
+def run_pytest(out, suite):
+    """test/unit (ROS-free) or test/integration (starts its own ROS processes)."""
+    xml = os.path.join(out, suite + '.xml')
     cmd = [sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider',
-           '--junitxml', xml, os.path.join(HERE, 'unit')]
+           '--junitxml', xml, os.path.join(HERE, suite)]
     rc = subprocess.call(cmd)
     if not os.path.exists(xml):
-        return 0, 1, ['unit tests: pytest exited %d without results' % rc]
+        return 0, 1, ['%s tests: pytest exited %d without results' % (suite, rc)]
     return count_junit(xml)
 
 
@@ -69,8 +70,12 @@ def run_rostest(path, out):
 
 def main():
     out = tempfile.mkdtemp(prefix='arm1-test-')
-    passed, failed, names = run_unit(out)
-    print('unit tests: %d passed, %d failed' % (passed, failed), flush=True)
+    passed = failed = 0
+    names = []
+    for suite in ('unit', 'integration'):
+        p, f, n = run_pytest(out, suite)
+        print('%s tests: %d passed, %d failed' % (suite, p, f), flush=True)
+        passed, failed, names = passed + p, failed + f, names + n
     for path in sorted(glob.glob(os.path.join(HERE, '*.test'))):
         p, f, n = run_rostest(path, out)
         passed, failed, names = passed + p, failed + f, names + n

@@ -97,6 +97,8 @@ def _start_standin(arms, real_time_update_rate):
     argv = [WORLD]
     if real_time_update_rate is not None:
         argv += ['--real-time-update-rate', str(real_time_update_rate)]
+    import rosparam
+    rosparam.set_param('/use_sim_time', 'true')  # as gazebo.launch sets it
     api, pacer = start_world(parse_args(argv))
     with open(CONTROLLERS) as f:
         params = yaml.safe_load(f)['arm1']

@@ -152,7 +152,7 @@ class GazeboRosApi:
         Receiving each one back costs a thread wake-up and the GIL on the physics
         thread; the world sets its own time instead. Returns True when it did.
         """
-        sub = rospy.impl.simtime._clock_sub
+        sub = getattr(rospy.impl.simtime, '_clock_sub', None)  # only set with use_sim_time
         if sub is None:
             return False
         sub.unregister()
