@@ -7,7 +7,7 @@ import logging
 
 from .control.controller import ControllerError
 from .control.hardware_interface import (EFFORT_JOINT_INTERFACE, JointHandle,
-                                         enforce_effort_limits)
+                                         saturate_effort, saturation_bounds)
 
 log = logging.getLogger('arm1.control')
 
@@ -26,6 +26,7 @@ class DefaultRobotHWSim:
             self.handles[joint.name] = JointHandle(joint.name, joint.type, joint.limits, interface)
         self._ordered = [self.handles[n] for n in sorted(self.handles)]
         self._indices = robot.indices([h.name for h in self._ordered])
+        self._bounds = [(h, saturation_bounds(h.limits)) for h in self._ordered]
 
     def joint_names(self):
         """Sorted, as hardware_interface's std::map gives them."""
@@ -47,7 +48,7 @@ class DefaultRobotHWSim:
 
     def write(self):
         efforts = []
-        for h in self._ordered:
-            h.effort = enforce_effort_limits(h.command, h.position, h.velocity, h.limits)
-            efforts.append(h.effort)
+        for h, bounds in self._bounds:
+            h.effort = effort = saturate_effort(h.command, h.position, h.velocity, *bounds)
+            efforts.append(effort)
         self.robot.apply_efforts(self._indices, efforts)

@@ -40,24 +40,25 @@ class JointHandle:
     claimed_by: str = None
 
 
-def enforce_effort_limits(command, position, velocity, limits):
-    """gazebo_ros_control's effort saturation for EffortJointInterface joints.
+def saturation_bounds(limits):
+    """``(max effort, lower, upper, max velocity)`` of JointLimits, inf where there is none."""
+    inf = math.inf
+    return (limits.effort if limits.effort is not None and limits.effort > 0 else inf,
+            limits.lower if limits.has_position_limits else -inf,
+            limits.upper if limits.has_position_limits else inf,
+            limits.velocity if limits.velocity is not None and limits.velocity > 0 else inf)
 
-    Clamp to +-effort; zero any effort pushing further beyond a position limit or
-    further beyond the velocity limit.
-    """
+
+def enforce_effort_limits(command, position, velocity, limits):
+    """gazebo_ros_control's effort saturation for EffortJointInterface joints (see saturate_effort)."""
+    return saturate_effort(command, position, velocity, *saturation_bounds(limits))
+
+
+def saturate_effort(command, position, velocity, max_effort, lower, upper, max_velocity):
+    """Clamp to +-max_effort; zero any effort pushing further beyond a position limit or
+    further beyond the velocity limit. Bounds come from saturation_bounds, once per joint."""
     if not math.isfinite(command):
         return 0.0
-    max_eff = limits.effort if limits.effort is not None and limits.effort > 0 else math.inf
-    min_eff = -max_eff
-    if limits.has_position_limits:
-        if position < limits.lower:
-            min_eff = 0.0
-        elif position > limits.upper:
-            max_eff = 0.0
-    if limits.velocity is not None and limits.velocity > 0:
-        if velocity < -limits.velocity:
-            min_eff = 0.0
-        elif velocity > limits.velocity:
-            max_eff = 0.0
-    return min(max(command, min_eff), max_eff)
+    hi = 0.0 if position > upper or velocity > max_velocity else max_effort
+    lo = 0.0 if position < lower or velocity < -max_velocity else -max_effort
+    return hi if command > hi else lo if command < lo else command
