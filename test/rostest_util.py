@@ -65,3 +65,15 @@ def sim_wait(seconds):
     """Sleep in sim time, but never longer than 20x that in wall time."""
     start = rospy.Time.now()
     wait_for(lambda: (rospy.Time.now() - start).to_sec() >= seconds, 20 * seconds + 5)
+
+
+def wait_for_controllers(count=5, ns='/arm1', timeout=60):
+    """Wait until ``count`` controllers run in ``ns``; returns the list_controllers proxy."""
+    from arm1.srv import ListControllers
+    name = ns + '/controller_manager/list_controllers'
+    rospy.wait_for_service(name, timeout)
+    list_controllers = rospy.ServiceProxy(name, ListControllers)
+    running = lambda: sum(c.state == 'running' for c in list_controllers().controller)
+    assert wait_for(lambda: running() >= count, timeout), \
+        'only %d of %d controllers running in %s' % (running(), count, ns)
+    return list_controllers

@@ -12,9 +12,8 @@ from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import (JOINTS, clock_recorder, joint_recorder, positions,  # noqa: E402
-                          rosout_recorder, sim_wait, wait_for)
+                          rosout_recorder, sim_wait, wait_for, wait_for_controllers)
 from arm1.msg import JointControllerState  # noqa: E402
-from arm1.srv import ListControllers  # noqa: E402
 
 LIMITS = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
           'joint4': (-0.8, 1.57)}
@@ -29,12 +28,7 @@ class Basics(unittest.TestCase):
         cls.rosout = rosout_recorder()
         cls.pub = {j: rospy.Publisher('/arm1/%s_position_controller/command' % j, Float64,
                                       queue_size=1, latch=True) for j in JOINTS}
-        rospy.wait_for_service('/arm1/controller_manager/list_controllers', 60)
-        list_controllers = rospy.ServiceProxy('/arm1/controller_manager/list_controllers',
-                                              ListControllers)
-        assert wait_for(lambda: sum(c.state == 'running' for c in
-                                    list_controllers().controller) == 5, 60), \
-            'the spawner did not start the five controllers'
+        cls.list_controllers = wait_for_controllers(5)
 
     def command(self, joint, value):
         self.pub[joint].publish(value)
@@ -57,7 +51,7 @@ class Basics(unittest.TestCase):
         return wait_for(ok, timeout)
 
     def test_01_controllers_running(self):
-        resp = rospy.ServiceProxy('/arm1/controller_manager/list_controllers', ListControllers)()
+        resp = self.list_controllers()
         got = {c.name: (c.type, c.state) for c in resp.controller}
         self.assertEqual(got['joint_state_controller'],
                          ('joint_state_controller/JointStateController', 'running'))

@@ -12,8 +12,7 @@ from std_srvs.srv import Empty
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import (JOINTS, clock_recorder, joint_recorder, positions,  # noqa: E402
-                          wait_for)
-from arm1.srv import ListControllers  # noqa: E402
+                          wait_for, wait_for_controllers)
 
 
 def call(name):
@@ -29,9 +28,7 @@ class PauseReset(unittest.TestCase):
         cls.states = joint_recorder()
         cls.pub = rospy.Publisher('/arm1/joint1_position_controller/command', Float64,
                                   queue_size=1, latch=True)
-        rospy.wait_for_service('/arm1/controller_manager/list_controllers', 60)
-        lc = rospy.ServiceProxy('/arm1/controller_manager/list_controllers', ListControllers)
-        assert wait_for(lambda: sum(c.state == 'running' for c in lc().controller) == 5, 60)
+        wait_for_controllers(5)
 
     def joint1_at(self, target, tol=0.03, timeout=30):
         return wait_for(lambda: self.states.last() is not None and
