@@ -43,9 +43,9 @@ APT_PACKAGES := \
 # A change to any of these rebuilds the workspace (python modules under
 # src/arm1 need no rebuild: the devel space imports them from src/).
 BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
-  $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/env-hooks/*) \
+  $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/cfg/*.cfg $(ROOT)/env-hooks/*) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
-  $(wildcard $(ROOT)/src/*/__init__.py)
+  $(wildcard $(ROOT)/src/*/__init__.py) $(wildcard $(ROOT)/compat/*/package.xml)
 
 .PHONY: setup build demo test bench clean link-package
 
@@ -104,6 +104,11 @@ link-package:
 	done; \
 	for l in *; do \
 	  if [ -L "$$l" ] && [ ! -e "$$l" ]; then rm -f "$$l"; fi; \
+	done
+	@# compat/: gazebo_ros, controller_manager and xacro stand-ins, packages of their own.
+	@for p in $(ROOT)/compat/*/; do \
+	  n=$$(basename "$$p"); \
+	  [ "$$(readlink "$(WS)/src/$$n" 2>/dev/null)" = "../../compat/$$n" ] || ln -sfn "../../compat/$$n" "$(WS)/src/$$n"; \
 	done
 
 #    Built with the venv python, so the devel-space relays of scripts/*
