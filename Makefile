@@ -45,7 +45,7 @@ APT_PACKAGES := \
 BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/cfg/*.cfg $(ROOT)/env-hooks/*) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
-  $(wildcard $(ROOT)/src/*/__init__.py) $(wildcard $(ROOT)/compat/*/package.xml)
+  $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py
 
 .PHONY: setup build demo test bench clean link-package
 
@@ -105,11 +105,8 @@ link-package:
 	for l in *; do \
 	  if [ -L "$$l" ] && [ ! -e "$$l" ]; then rm -f "$$l"; fi; \
 	done
-	@# compat/: gazebo_ros, controller_manager and xacro stand-ins, packages of their own.
-	@for p in $(ROOT)/compat/*/; do \
-	  n=$$(basename "$$p"); \
-	  [ "$$(readlink "$(WS)/src/$$n" 2>/dev/null)" = "../../compat/$$n" ] || ln -sfn "../../compat/$$n" "$(WS)/src/$$n"; \
-	done
+	@# gazebo_ros, controller_manager and xacro stand-ins: packages of their own beside arm1.
+	@$(SYS_PY) $(ROOT)/tools/make_compat_packages.py $(WS)/src
 
 #    Built with the venv python, so the devel-space relays of scripts/*
 #    (what rosrun / roslaunch start) run with rospy AND pybullet.
