@@ -86,6 +86,15 @@ class RosNodeHandle:
         self._handles.append(sub)
         return sub
 
+    def serve_config(self, namespace, type_name, current, on_change):
+        """A dynamic_reconfigure server at ``namespace`` (e.g. a controller's ``pid``):
+        starts at ``current``; ``on_change(values)`` returns the values in force."""
+        from .pid_reconfigure import serve_config
+        server = serve_config(self._name(namespace), type_name, current, on_change)
+        if server is not None:
+            self._handles.append(server)
+        return server
+
     def shutdown(self):
         for h in self._handles:
             h.unregister()

@@ -1,0 +1,8 @@
+"""Tuning the position controllers' PID gains, free of ROS.
+
+``metrics`` (step-response figures from any sampled response), ``local_ros`` (an
+in-process node handle so the real ControllerManager runs without a master),
+``steps`` (the step protocol on a headless Simulation at top speed), ``search``
+(gain search per joint), ``recorded`` (steps found in a recorded run), ``plot``
+(PNG plots, matplotlib Agg) and ``cli`` (``rosrun arm1 tune``).
+"""
