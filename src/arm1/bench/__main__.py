@@ -23,6 +23,7 @@ PLAN = [
     ('standin_2', 'standin', ['--seconds', '4', '--arms', '2'], 3, None, 0),
     ('standin_4', 'standin', ['--seconds', '4', '--arms', '4'], 3, None, 0),
     ('standin_8', 'standin', ['--seconds', '4', '--arms', '8'], 3, None, 0),
+    ('profile', 'standin', ['--seconds', '4', '--arms', '1', '--profile'], 1, None, 0),
     ('latency', 'latency', ['--commands', '1000'], 3, ['--commands', '100'], 1),
     ('startup', 'startup', [], 5, [], 1),
     ('realtime', 'realtime', ['--seconds', '60'], 3, ['--seconds', '4'], 1),

@@ -59,8 +59,24 @@ def write_markdown(results, path):
                    m['date'], ' **Quick run (smoke): one short run each.**' if results['quick']
                    else ''))
         f.write(text + '\n')
+        f.write(profile_section(results))
         f.write(METHOD)
     return text
+
+
+def profile_section(results):
+    """Where the stand-in's step goes, from the profiled top-speed run."""
+    runs = results['raw'].get('profile')
+    if not runs:
+        return ''
+    shares = runs[0]['profile_share']
+    lines = ['', '## Where a stand-in step goes', '',
+             'cProfile of the physics thread at top speed (1 arm). Profiling slows Python code '
+             'more than pybullet\'s C++, so Python\'s real share is somewhat smaller.', '',
+             '| part | share of the physics thread |', '|---|---|']
+    lines += ['| %s | %.0f %% |' % (k, 100 * v) for k, v in sorted(shares.items(),
+                                                                   key=lambda kv: -kv[1])]
+    return '\n'.join(lines) + '\n'
 
 
 METHOD = '''

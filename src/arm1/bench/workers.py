@@ -126,8 +126,39 @@ def _listeners(arms):
     return procs
 
 
-def standin(seconds, arms=1, warmup=1.0):
-    """Top speed: steps per wall second with real_time_update_rate 0."""
+# Where a step's time goes: (label, predicate on pstats' (file, line, function) key)
+PROFILE_PARTS = [
+    ('pybullet stepSimulation', lambda f, fn: 'stepSimulation' in fn),
+    ('pybullet joint read / torque write',
+     lambda f, fn: 'getJointStates' in fn or 'setJointMotorControlArray' in fn),
+    ('controllers, PID, controller manager (Python)', lambda f, fn: '/arm1/control/' in f),
+    ('hardware interface, robot, simulation step (Python)',
+     lambda f, fn: any(m in f for m in ('robot_hw_sim.py', 'physics/robot.py', 'simulation.py'))),
+    ('ROS publishing (messages, rospy, sockets)',
+     lambda f, fn: any(m in f for m in ('rospy', 'genpy', '_msgs/msg', 'node_handle.py'))
+     or 'sendall' in fn),
+    ('world loop, clock, pacing', lambda f, fn: any(m in f for m in ('gazebo_interface.py',
+                                                                     'pacer.py'))),
+]
+
+
+OTHER = 'Python built-ins (min, max, isfinite, ...) and the rest'
+
+
+def _profile_split(stats):
+    """Share of the physics thread's time per PROFILE_PARTS label, the rest under OTHER."""
+    shares = {label: 0.0 for label, _ in PROFILE_PARTS}
+    shares[OTHER] = 0.0
+    total = 0.0
+    for (path, _, fn), (_, _, tottime, _, _) in stats.stats.items():
+        total += tottime
+        label = next((l for l, match in PROFILE_PARTS if match(path, fn)), OTHER)
+        shares[label] += tottime
+    return {k: v / total for k, v in shares.items()}
+
+
+def standin(seconds, arms=1, warmup=1.0, profile=False):
+    """Top speed: steps per wall second with real_time_update_rate 0 (optionally profiled)."""
     import rospy
     api, pacer = _start_standin(arms, 0)
     listeners = _listeners(arms)
@@ -140,13 +171,24 @@ def standin(seconds, arms=1, warmup=1.0):
         marks.append((time.perf_counter(), api.sim.steps))
         rospy.signal_shutdown('measured')
     threading.Thread(target=timer, daemon=True).start()
+    profiler = None
+    if profile:
+        import cProfile
+        profiler = cProfile.Profile()
+        profiler.enable()
     try:
         api.run(pacer)
     finally:
+        if profiler:
+            profiler.disable()
         for proc in listeners:
             proc.terminate()
     (w0, s0), (w1, s1) = marks
-    return {'steps_per_s': (s1 - s0) / (w1 - w0), 'arms': arms}
+    result = {'steps_per_s': (s1 - s0) / (w1 - w0), 'arms': arms}
+    if profiler:
+        import pstats
+        result = {'profile_share': _profile_split(pstats.Stats(profiler))}
+    return result
 
 
 def latency(commands, rate=100.0):
@@ -284,6 +326,7 @@ def main(argv=None):
     parser.add_argument('--commands', type=int)
     parser.add_argument('--count', type=int)
     parser.add_argument('--rate', type=float)
+    parser.add_argument('--profile', action='store_true', default=None)
     args = parser.parse_args(argv)
     kwargs = {k: v for k, v in vars(args).items() if k != 'kind' and v is not None}
     result = KINDS[args.kind](**kwargs)
