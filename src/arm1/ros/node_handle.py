@@ -30,36 +30,39 @@ def to_time(ns):
     return rospy.Time(ns // 1000000000, ns % 1000000000)
 
 
-def _joint_state(f):
-    m = JointState(name=f['name'], position=f['position'], velocity=f['velocity'],
-                   effort=f['effort'])
-    m.header.stamp = to_time(f['stamp'])
-    return m
+def _fill_stamped(msg, fields):
+    """Copy the core's fields into a message; ``stamp`` (ns of sim time) goes to the header."""
+    for key, value in fields.items():
+        if key == 'stamp':
+            msg.header.stamp = to_time(value)
+        else:
+            setattr(msg, key, value)
 
 
-def _controller_state(f):
-    m = JointControllerState(**{k: v for k, v in f.items() if k != 'stamp'})
-    m.header.stamp = to_time(f['stamp'])
-    return m
+def _fill_data(msg, value):
+    msg.data = value
 
 
-# type name -> (message class, dict -> message)
+# type name -> (message class, fill(message, core's fields))
 MESSAGES = {
-    'sensor_msgs/JointState': (JointState, _joint_state),
-    'arm1/JointControllerState': (JointControllerState, _controller_state),
-    'std_msgs/Float64': (Float64, lambda f: Float64(f)),
+    'sensor_msgs/JointState': (JointState, _fill_stamped),
+    'arm1/JointControllerState': (JointControllerState, _fill_stamped),
+    'std_msgs/Float64': (Float64, _fill_data),
 }
 
 
 class _Publisher:
-    __slots__ = ('pub', 'convert')
+    """Fills one message again for each publish: publishing is synchronous (serialised
+    before publish returns), so reuse is safe and spares building a message each time."""
+    __slots__ = ('pub', 'fill', 'msg')
 
-    def __init__(self, pub, convert):
-        self.pub, self.convert = pub, convert
+    def __init__(self, pub, msg_class, fill):
+        self.pub, self.fill, self.msg = pub, fill, msg_class()
 
     def publish(self, fields):
         if self.pub.get_num_connections():  # build no message nobody reads
-            self.pub.publish(self.convert(fields))
+            self.fill(self.msg, fields)
+            self.pub.publish(self.msg)
 
 
 class RosNodeHandle:
@@ -75,10 +78,10 @@ class RosNodeHandle:
 
     def advertise(self, topic, type_name, queue_size):
         # queue_size is part of the node handle's interface; publishing here is synchronous.
-        cls, convert = MESSAGES[type_name]
+        cls, fill = MESSAGES[type_name]
         pub = synchronous_publisher(self._name(topic), cls)
         self._handles.append(pub)
-        return _Publisher(pub, convert)
+        return _Publisher(pub, cls, fill)
 
     def subscribe(self, topic, type_name, callback):
         cls, _ = MESSAGES[type_name]
