@@ -17,6 +17,8 @@ SRC = os.path.join(REPO_ROOT, 'src')
 if SRC not in sys.path:
     sys.path.insert(0, SRC)
 
+from arm1.tuning.local_ros import LocalNodeHandle, LocalRos  # noqa: E402  (after SRC)
+
 ARM1_XACRO = os.path.join(REPO_ROOT, 'urdf', 'arm1.urdf.xacro')
 CONTROLLERS_YAML = os.path.join(REPO_ROOT, 'config', 'controllers.yaml')
 WORLD_FILE = os.path.join(REPO_ROOT, 'worlds', 'willow_garage.world')
@@ -35,20 +37,18 @@ class FakePublisher:
         self.messages.append(fields)
 
 
-class FakeNodeHandle:
-    """``namespace``, ``params`` (the subtree at the namespace), advertise, subscribe, shutdown."""
+class FakeNodeHandle(LocalNodeHandle):
+    """The tuner's in-process node handle, also keeping every publisher it made."""
 
     def __init__(self, ros, namespace):
-        self.ros = ros
-        self.namespace = namespace.rstrip('/') or '/'
-        self.params = ros.get_param(self.namespace)
+        super().__init__(ros, namespace)
         self.publishers = []
-        self.subscriptions = []
         self.is_shutdown = False
         ros.handles.append(self)
 
-    def resolve(self, topic):
-        return topic if topic.startswith('/') else '%s/%s' % (self.namespace.rstrip('/'), topic)
+    @property
+    def subscriptions(self):
+        return self._subscriptions
 
     def advertise(self, topic, type_name, queue_size):
         pub = FakePublisher(self.resolve(topic), type_name, queue_size)
@@ -56,48 +56,25 @@ class FakeNodeHandle:
         self.ros.publishers.setdefault(pub.topic, []).append(pub)
         return pub
 
-    def subscribe(self, topic, type_name, callback):
-        name = self.resolve(topic)
-        self.subscriptions.append((name, callback))
-        self.ros.subscribers.setdefault(name, []).append(callback)
-        return callback
-
     def shutdown(self):
         self.is_shutdown = True
-        for name, cb in self.subscriptions:
-            self.ros.subscribers[name].remove(cb)
+        super().shutdown()
         for pub in self.publishers:
             self.ros.publishers[pub.topic].remove(pub)
-        self.subscriptions, self.publishers = [], []
+        self.publishers = []
 
 
-class FakeRos:
-    """A parameter server and a topic graph made of lists."""
+class FakeRos(LocalRos):
+    """LocalRos (parameters as a dict tree, topics as lists) that keeps every message."""
 
     def __init__(self, params=None):
-        self.params = params if params is not None else {}
+        super().__init__(params)
         self.handles = []
         self.publishers = {}  # topic -> [FakePublisher]
-        self.subscribers = {}  # topic -> [callback]
-
-    def get_param(self, namespace):
-        node = self.params
-        for part in [p for p in namespace.split('/') if p]:
-            if not isinstance(node, dict) or part not in node:
-                return {}
-            node = node[part]
-        return node if isinstance(node, dict) else {}
 
     def node_handle(self, namespace):
         """The ``node_factory`` a ControllerManager takes."""
         return FakeNodeHandle(self, namespace)
-
-    def publish(self, topic, value):
-        """Deliver ``value`` to every subscriber of ``topic``; how many got it."""
-        callbacks = list(self.subscribers.get(topic, []))
-        for cb in callbacks:
-            cb(value)
-        return len(callbacks)
 
     def messages(self, topic):
         out = []
