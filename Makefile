@@ -38,7 +38,8 @@ APT_PACKAGES := \
   python3-rosmsg python3-rosbag rospack-tools python3-rosmaster python3-rospkg \
   python3-catkin-pkg \
   python3-venv python3-pip python3-numpy python3-yaml \
-  cmake make g++ xvfb
+  cmake make g++ xvfb \
+  rviz joint-state-publisher-gui libgl1-mesa-dri libglx-mesa0
 
 # A change to any of these rebuilds the workspace (python modules under
 # src/arm1 need no rebuild: the devel space imports them from src/).

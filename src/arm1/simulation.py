@@ -6,8 +6,9 @@ loaded: read the joints, update the controllers, write saturated efforts, step.
 import math
 import os
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from .physics.camera import SensorManager, camera_sensors
 from .physics.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
 from .physics.world import World
 from .robot_hw_sim import DefaultRobotHWSim
@@ -25,6 +26,7 @@ class Model:
     hw: object = None  # DefaultRobotHWSim, when the URDF has the gazebo_ros_control plugin
     controller_manager: object = None
     namespace: str = ''
+    cameras: list = field(default_factory=list)  # physics.camera.Camera, one per camera sensor
 
 
 class Simulation:
@@ -37,6 +39,7 @@ class Simulation:
         self.models = {}
         self._controlled = []  # models with a controller manager, in spawn order
         self._tmp = tempfile.TemporaryDirectory(prefix='arm1-sim-')
+        self.sensors = SensorManager(world_config)
 
     @property
     def time_ns(self):
@@ -54,13 +57,14 @@ class Simulation:
         try:
             description = parse_urdf(urdf_xml)
             resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages)
+            sensors = camera_sensors(description)
         except UrdfError as exc:
             raise SpawnError("cannot spawn '%s': %s" % (name, exc))
         path = os.path.join(self._tmp.name, '%s.urdf' % name)
         with open(path, 'w') as f:
             f.write(resolved)
-        robot = self.world.load_robot(path, position, orientation,
-                                      fixed_base=description.root_link == 'world')
+        load_args = (path, tuple(position), tuple(orientation), description.root_link == 'world')
+        robot = self.world.load_robot(*load_args)
         model = Model(name, description, robot)
         plugin = description.control_plugin
         if plugin is not None:
@@ -73,6 +77,7 @@ class Simulation:
             if controller_manager_factory is not None:
                 model.controller_manager = controller_manager_factory(model.hw, model.namespace)
                 self._controlled.append(model)
+        model.cameras = self.sensors.add_robot(name, load_args, sensors)
         self.models[name] = model
         return model
 
@@ -83,6 +88,7 @@ class Simulation:
         if model in self._controlled:
             self._controlled.remove(model)
         self.world.remove_robot(model.robot)
+        self.sensors.remove_robot(name)
         return model
 
     def set_model_configuration(self, name, joint_names, positions):
@@ -106,6 +112,11 @@ class Simulation:
             model.hw.write()
         self.world.step()
         self.steps += 1
+        if self.sensors.cameras:
+            self.sensors.update(self.time_ns, self._robot_states)
+
+    def _robot_states(self):
+        return {name: model.robot.state() for name, model in self.models.items()}
 
     def reset_world(self):
         """Robots back to their spawn poses, joints to zero; time goes on."""
@@ -117,6 +128,7 @@ class Simulation:
         self.steps = 0
 
     def close(self):
+        self.sensors.close()
         self.world.close()
         self._tmp.cleanup()
 

@@ -51,6 +51,19 @@ class Robot:
         for i in self.movable:
             p.resetJointState(self.body, i, 0.0, 0.0, physicsClientId=self.client)
 
+    def state(self):
+        """Base pose and the positions of the movable joints: all a mirror needs to look alike."""
+        pos, orn = p.getBasePositionAndOrientation(self.body, physicsClientId=self.client)
+        joints = p.getJointStates(self.body, self.movable, physicsClientId=self.client)
+        return pos, orn, [s[0] for s in joints]
+
+    def set_state(self, state):
+        """Take on a ``state()`` of a robot loaded from the same URDF."""
+        pos, orn, positions = state
+        p.resetBasePositionAndOrientation(self.body, pos, orn, physicsClientId=self.client)
+        for i, value in zip(self.movable, positions):
+            p.resetJointState(self.body, i, value, physicsClientId=self.client)
+
     def link_pose(self, link_name):
         """World position and quaternion of a link's frame."""
         i = self.link_index[link_name]

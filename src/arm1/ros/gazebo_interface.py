@@ -21,6 +21,7 @@ from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from ..pacer import Pacer, RealTimeFactorMeter, wall_period
 from ..physics.sdf_world import SdfError, WorldConfig, read_world
 from ..simulation import Simulation, SpawnError
+from .camera_plugin import GazeboRosCamera
 from .controller_manager_interface import ControllerManagerInterface
 from .node_handle import route_core_logs, synchronous_publisher, to_time
 
@@ -46,6 +47,7 @@ class GazeboRosApi:
         self._calls = collections.deque()
         self._find_package = PackageFinder()
         self._cm_interfaces = {}
+        self._cameras = {}  # model name -> [GazeboRosCamera]
         self.clock_period_ns = int(1e9 / max(1e-3, float(rospy.get_param('~pub_clock_frequency', 100))))
         self._clock_pub = synchronous_publisher('/clock', Clock)
         self._own_clock = self._stop_listening_to_own_clock()
@@ -104,6 +106,9 @@ class GazeboRosApi:
         msg = "SpawnModel: Successfully spawned entity '%s'" % model.name
         if model.controller_manager is not None:
             msg += ' with controller manager in %s' % model.namespace
+        self._cameras[model.name] = [GazeboRosCamera(c) for c in model.cameras]
+        for c in model.cameras:
+            msg += '; camera %s on %s' % (c.sensor.name, c.sensor.image_topic)
         rospy.loginfo(msg)
         return True, msg
 
@@ -124,6 +129,8 @@ class GazeboRosApi:
         interface = self._cm_interfaces.pop(model.namespace, None)
         if interface:
             interface.shutdown()
+        for camera in self._cameras.pop(model.name, []):
+            camera.shutdown()
         return True, "DeleteModel: successfully deleted model '%s'" % req.model_name
 
     def _configure(self, req):

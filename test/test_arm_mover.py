@@ -1,0 +1,83 @@
+#!/usr/bin/env python
+"""arm_mover's /safe_move on arm1: moves and returns the elapsed time, clamps, never hangs."""
+import os
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+from std_srvs.srv import Empty
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from camera_util import JointCommander  # noqa: E402
+from rostest_util import joint_recorder, rosout_recorder, wait_for  # noqa: E402
+from arm1.srv import GoToPosition  # noqa: E402
+
+
+class ArmMover(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_arm_mover')
+        cls.states = joint_recorder()
+        cls.rosout = rosout_recorder()
+        cls.arm = JointCommander(cls.states)
+        for name in ('/arm_mover/safe_move', '/arm_mover_tight/safe_move'):
+            rospy.wait_for_service(name, 60)
+        cls.safe_move = rospy.ServiceProxy('/arm_mover/safe_move', GoToPosition)
+        cls.tight = rospy.ServiceProxy('/arm_mover_tight/safe_move', GoToPosition)
+        assert wait_for(lambda: cls.states.last() is not None, 60), 'no joint_states'
+
+    def test_01_moves_and_returns_the_elapsed_time(self):
+        for pose in ((0.5, 0.6, -0.4, -0.4), (-0.5, 1.2, 0.3, 0.0)):
+            before = rospy.Time.now()
+            resp = self.safe_move(*pose)
+            after = rospy.Time.now()
+            # it answered once the arm was there ...
+            self.assertIsNotNone(self.arm.wait_at(pose, 0.05, 0), 'answered before arriving')
+            # ... with the sim time that took
+            elapsed = resp.time_elapsed.to_sec()
+            self.assertGreater(elapsed, 0.0)
+            self.assertLessEqual(elapsed, (after - before).to_sec() + 0.02)
+
+    def test_02_out_of_range_requests_are_clamped_with_a_warning(self):
+        start = time.monotonic()
+        # joint1's range is set to [-1.57, 1.0] in the launch file; joint3's is the URDF's
+        resp = self.safe_move(3.0, 0.6, -2.0, -0.4)
+        self.assertGreater(resp.time_elapsed.to_sec(), 0.0)
+        self.assertIsNotNone(self.arm.wait_at((1.0, 0.6, -1.0, -0.4), 0.05, 0))
+        texts = lambda: [m.msg for m in self.rosout.since(start) if m.name == '/arm_mover']
+        self.assertTrue(wait_for(lambda: any(
+            'joint1 = 3.000 is out of range [-1.570, 1.000]: clamped to 1.000' in t
+            for t in texts()), 5), texts())
+        self.assertTrue(any('joint3 = -2.000 is out of range [-1.000, 1.570]' in t
+                            for t in texts()), texts())
+
+    def test_03_unreachable_target_answers_with_the_timeout_error(self):
+        # arm_mover_tight lets joint2 go to 3.0, past the URDF limit the controller clamps to
+        start = time.monotonic()
+        with self.assertRaises(rospy.ServiceException) as err:
+            self.tight(0.0, 3.0, 0.0, 0.0)
+        self.assertLess(time.monotonic() - start, 20, 'took too long to give up')
+        text = str(err.exception)
+        self.assertIn('not there after 2 s', text)
+        self.assertRegex(text, r'joint2 at 1\.5\d\d \(target 3\.000\)')
+        for j in ('joint1', 'joint3', 'joint4'):
+            self.assertNotIn(j, text)  # they did arrive
+
+    def test_04_paused_physics_does_not_hang_it(self):
+        rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
+        try:
+            start = time.monotonic()
+            with self.assertRaises(rospy.ServiceException) as err:
+                self.tight(0.2, 1.0, 0.0, 0.0)
+            self.assertLess(time.monotonic() - start, 10)
+            self.assertIn('no message on /arm1/joint_states for 2 s', str(err.exception))
+        finally:
+            rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
+        # and it works again once physics runs
+        self.assertGreater(self.safe_move(0.2, 1.0, 0.0, 0.0).time_elapsed.to_sec(), 0.0)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('arm1', 'test_arm_mover', ArmMover)
