@@ -27,6 +27,7 @@ PLAN = [
     ('latency', 'latency', ['--commands', '1000'], 3, ['--commands', '100'], 1),
     ('startup', 'startup', [], 5, [], 1),
     ('realtime', 'realtime', ['--seconds', '60'], 3, ['--seconds', '4'], 1),
+    ('idle_world', 'idle_world', ['--seconds', '20'], 3, None, 0),
 ]
 NEEDS_MASTER = {'standin', 'latency'}  # they run the world in-process against a shared master
 

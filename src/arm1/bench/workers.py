@@ -118,12 +118,11 @@ def _start_standin(arms, real_time_update_rate):
 
 
 def _listeners(arms):
-    """Subscribers in other processes, as robot_state_publisher would be."""
-    procs = []
-    for k in range(1, arms + 1):
-        procs.append(subprocess.Popen(['rostopic', 'hz', '/arm%d/joint_states' % k],
-                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
-    return procs
+    """A subscriber to every arm's joint_states in another process, as robot_state_publisher
+    would be; one process for all, so that N arms do not bring N Python listeners."""
+    topics = ['/arm%d/joint_states' % k for k in range(1, arms + 1)]
+    return [subprocess.Popen(['rostopic', 'hz'] + topics, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)]
 
 
 # Where a step's time goes: (label, predicate on pstats' (file, line, function) key)
@@ -189,6 +188,28 @@ def standin(seconds, arms=1, warmup=1.0, profile=False):
         import pstats
         result = {'profile_share': _profile_split(pstats.Stats(profiler))}
     return result
+
+
+def idle_world(seconds):
+    """The floor at real time: CPU of the world node with no robot, and of one wake-up.
+
+    A 1 kHz world sleeps and wakes 1 000 times a wall second whatever it simulates;
+    what each wake-up costs in CPU is measured apart, with plain 0.9 ms sleeps.
+    """
+    import rospy
+    from ..ros.gazebo_interface import parse_args, start_world
+    n = 2000
+    c0 = time.process_time()
+    for _ in range(n):
+        time.sleep(0.0009)
+    sleep_cpu = (time.process_time() - c0) / n
+    api, pacer = start_world(parse_args([WORLD]))
+    threading.Thread(target=lambda: (time.sleep(seconds), rospy.signal_shutdown('measured')),
+                     daemon=True).start()
+    w0, c0 = time.perf_counter(), time.process_time()
+    api.run(pacer)
+    w1, c1 = time.perf_counter(), time.process_time()
+    return {'cpu_core_fraction': (c1 - c0) / (w1 - w0), 'sleep_wakeup_cpu_us': sleep_cpu * 1e6}
 
 
 def latency(commands, rate=100.0):
@@ -315,6 +336,7 @@ def _node_pids(rosgraph, names):
 
 
 KINDS = {'bare': bare, 'standin': standin, 'latency': latency, 'publisher': publisher,
+         'idle_world': idle_world,
          'startup': startup, 'realtime': realtime}
 
 
