@@ -81,12 +81,11 @@ def unmet_section(results):
             '- **Speed ratio %.2f (goal 0.6).** A bare step takes %.1f µs, a stand-in step %.1f µs. '
             'The difference is Python doing what ros_control does: four controller objects with '
             'a control_toolbox PID each, effort saturation per joint, the hardware interface '
-            'and the controller manager, about %.1f µs per joint per step in CPython, where the '
-            'bare loop\'s inline PD costs about 1 µs; the profile below shows Python taking most '
-            'of the physics thread. joint_states and /clock cost the rest. Closing the gap '
-            'means moving the per-joint path out of Python (numpy costs more than it saves at '
-            'four joints).' % (ratio, 1e6 / bare, 1e6 / standin,
-                               (1e6 / standin - 1e6 / bare) / 4))
+            'and the controller manager: about %.1f µs more per joint per step in CPython than '
+            'the bare loop\'s inline PD. The profile below shows Python taking most of the '
+            'physics thread; joint_states and /clock cost the rest. Closing the gap '
+            'means moving the per-joint path out of Python.' % (
+                ratio, 1e6 / bare, 1e6 / standin, (1e6 / standin - 1e6 / bare) / 4))
     cpu, floor = med('realtime', 'cpu_core_fraction'), med('idle_world', 'cpu_core_fraction')
     wake = med('idle_world', 'sleep_wakeup_cpu_us')
     if cpu is not None and cpu > 0.10 and floor is not None:
@@ -95,8 +94,9 @@ def unmet_section(results):
             '%.3f: a 1 kHz world sleeps and wakes 1 000 times a second, and one wake-up costs '
             '%.0f µs of CPU on this virtual machine. arm1 with its five controllers and its '
             'subscribers (robot_state_publisher, joint_state_publisher, the spawner and this '
-            'benchmark read /clock) adds %.0f µs of CPU per step: each step starts cold after '
-            'a sleep, so it costs more than the same step back to back at top speed (%.0f µs). '
+            'benchmark read /clock) adds %.0f µs of CPU per step, several times what a step '
+            'costs back to back at top speed (%.0f µs): a step that starts after a sleep '
+            'finds cold caches, and every /clock goes out to each subscriber. '
             'Running two steps per wake-up would cut the wake-ups but hold a command up to a '
             'step longer, against the 2 ms latency goal, so the world keeps one step per '
             'wake-up.' % (cpu, floor, wake, (cpu - floor) * 1000, 1e6 / standin if standin
