@@ -5,8 +5,10 @@ Controllers talk to the outside world through node handles given to ``init``:
 controller's own, e.g. ``/arm1/joint1_position_controller``). A node handle has
 ``namespace``, ``params`` (the parameter subtree of that namespace, a dict),
 ``advertise(topic, type_name, queue_size)`` returning an object with
-``publish(fields)`` and ``subscribe(topic, type_name, callback)``. The ROS layer
-implements them with rospy; tests implement them with lists.
+``publish(fields)``, ``subscribe(topic, type_name, callback)`` and ``shutdown()``;
+optionally ``serve_config(namespace, type_name, current, on_change)`` for live
+parameters (dynamic_reconfigure). The ROS layer implements them with rospy; the
+tuner and the tests, in-process (tuning/local_ros.py).
 """
 
 
