@@ -106,8 +106,7 @@ def _start_standin(arms, real_time_update_rate):
     for k in range(1, arms + 1):
         ns = '/arm%d' % k
         rospy.set_param(ns, params)
-        model = api.sim.spawn_urdf('arm%d' % k, arm1_urdf(ns), (0.4 * (k - 1), 0, 0), (0, 0, 0, 1),
-                                   '', api._find_package, api._make_controller_manager)
+        model = api.spawn('arm%d' % k, arm1_urdf(ns), (0.4 * (k - 1), 0, 0), (0, 0, 0, 1))
         for name in NAMES:
             model.controller_manager.load_controller(name)
         managers.append(model.controller_manager)
@@ -117,10 +116,12 @@ def _start_standin(arms, real_time_update_rate):
     return api, pacer
 
 
-def _listeners(arms):
+def _listeners(arms, camera=False):
     """A subscriber to every arm's joint_states in another process, as robot_state_publisher
-    would be; one process for all, so that N arms do not bring N Python listeners."""
+    would be; one process for all, so that N arms do not bring N Python listeners. With
+    ``camera``, it also watches arm1's camera, which makes the world render it."""
     topics = ['/arm%d/joint_states' % k for k in range(1, arms + 1)]
+    topics += ['/rgb_camera/image_raw'] if camera else []
     return [subprocess.Popen(['rostopic', 'hz'] + topics, stdout=subprocess.DEVNULL,
                              stderr=subprocess.DEVNULL)]
 
@@ -156,11 +157,12 @@ def _profile_split(stats):
     return {k: v / total for k, v in shares.items()}
 
 
-def standin(seconds, arms=1, warmup=1.0, profile=False):
-    """Top speed: steps per wall second with real_time_update_rate 0 (optionally profiled)."""
+def standin(seconds, arms=1, warmup=1.0, profile=False, camera=False):
+    """Top speed: steps per wall second with real_time_update_rate 0 (optionally profiled,
+    or with arm1's camera streaming)."""
     import rospy
     api, pacer = _start_standin(arms, 0)
-    listeners = _listeners(arms)
+    listeners = _listeners(arms, camera)
     marks = []
 
     def timer():
@@ -183,7 +185,7 @@ def standin(seconds, arms=1, warmup=1.0, profile=False):
         for proc in listeners:
             proc.terminate()
     (w0, s0), (w1, s1) = marks
-    result = {'steps_per_s': (s1 - s0) / (w1 - w0), 'arms': arms}
+    result = {'steps_per_s': (s1 - s0) / (w1 - w0), 'arms': arms, 'camera': camera}
     if profiler:
         import pstats
         result = {'profile_share': _profile_split(pstats.Stats(profiler))}
@@ -349,6 +351,7 @@ def main(argv=None):
     parser.add_argument('--count', type=int)
     parser.add_argument('--rate', type=float)
     parser.add_argument('--profile', action='store_true', default=None)
+    parser.add_argument('--camera', action='store_true', default=None)
     args = parser.parse_args(argv)
     kwargs = {k: v for k, v in vars(args).items() if k != 'kind' and v is not None}
     result = KINDS[args.kind](**kwargs)

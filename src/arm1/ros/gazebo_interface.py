@@ -98,7 +98,7 @@ class GazeboRosApi:
         if q == (0, 0, 0, 0):
             q = (0, 0, 0, 1)
         try:
-            model = self.call_in_sim_thread(self._spawn_in_sim, req.model_name, req.model_xml,
+            model = self.call_in_sim_thread(self.spawn, req.model_name, req.model_xml,
                                             xyz, q, req.robot_namespace)
         except SpawnError as exc:
             rospy.logerr(str(exc))
@@ -106,15 +106,17 @@ class GazeboRosApi:
         msg = "SpawnModel: Successfully spawned entity '%s'" % model.name
         if model.controller_manager is not None:
             msg += ' with controller manager in %s' % model.namespace
-        self._cameras[model.name] = [GazeboRosCamera(c) for c in model.cameras]
         for c in model.cameras:
             msg += '; camera %s on %s' % (c.sensor.name, c.sensor.image_topic)
         rospy.loginfo(msg)
         return True, msg
 
-    def _spawn_in_sim(self, name, xml, xyz, quat, namespace):
-        return self.sim.spawn_urdf(name, xml, xyz, quat, namespace, self._find_package,
-                                   self._make_controller_manager)
+    def spawn(self, name, xml, xyz, quat, namespace=''):
+        """Spawn a URDF model with its plugins (controller manager, cameras). Sim thread only."""
+        model = self.sim.spawn_urdf(name, xml, xyz, quat, namespace, self._find_package,
+                                    self._make_controller_manager)
+        self._cameras[model.name] = [GazeboRosCamera(c) for c in model.cameras]
+        return model
 
     def _make_controller_manager(self, hw, namespace):
         interface = ControllerManagerInterface(hw, namespace)
