@@ -78,9 +78,13 @@ class Basics(unittest.TestCase):
     def test_03_step_settles(self):
         # Upright first, so that no link rests on the ground plane.
         self.pose(joint1=0.0, joint2=1.2, joint3=0.0, joint4=0.0)
-        for joint, target in (('joint1', 0.5), ('joint4', 0.4), ('joint3', -0.5)):
+        # joint1 turns about the vertical and joint4 carries almost nothing: within 0.02 rad.
+        # joint3 lifts link3 and link4 against gravity, and with the seed's gains (no
+        # i_clamp, so no integral term) it holds short by gravity torque / p: 20-30 mrad here.
+        for joint, target, tol in (('joint1', 0.5, 0.02), ('joint4', 0.4, 0.02),
+                                   ('joint3', -0.5, 0.04)):
             self.command(joint, target)
-            self.assertTrue(self.settled(joint, target, 0.02, 30),
+            self.assertTrue(self.settled(joint, target, tol, 30),
                             '%s did not settle at %.2f: %s' % (
                                 joint, target, positions(self.states.last())[joint]))
 
