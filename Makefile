@@ -48,7 +48,7 @@ BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
   $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py
 
-.PHONY: setup build demo test bench clean link-package
+.PHONY: setup venv build demo test bench clean link-package
 
 # A stamp is only trusted while what it stands for is still there.
 ifeq ($(wildcard $(VENV_PY)),)
@@ -59,6 +59,10 @@ ifeq ($(wildcard $(WS)/devel/setup.bash),)
 endif
 
 setup: $(STAMPS)/build link-package
+
+# Only the Debian packages and .ws/venv, for a workspace of your own (~/catkin_ws): a
+# catkin workspace inside the package would give rosrun two copies of every node.
+venv: $(STAMPS)/venv
 
 # a. Debian packages: dpkg-query first, so a re-run does no apt work at all.
 $(STAMPS)/apt: $(ROOT)/Makefile
