@@ -1,7 +1,6 @@
 """Helpers of the camera, arm_mover and look_away rostests: images, poses and the render process."""
 import os
 import threading
-import time
 import xmlrpc.client
 
 import rosgraph

@@ -1,6 +1,5 @@
 """`make bench --quick` runs end to end and its figures are sane (not the goals: machines are noisy)."""
 import json
-import os
 import subprocess
 import sys
 
