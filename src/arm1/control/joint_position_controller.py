@@ -103,12 +103,6 @@ class JointPositionController(Controller):
         self._plain_error = j.type == 'prismatic' or (
             j.type == 'revolute' and clamped and lim.upper - lim.lower < 2 * math.pi)
 
-    def enforce_joint_limits(self, position):
-        limits = self.joint.limits
-        if self.joint.type in ('revolute', 'prismatic') and limits.has_position_limits:
-            return min(max(position, limits.lower), limits.upper)
-        return position
-
     def error(self, set_point):
         j = self.joint
         if j.type == 'revolute' and j.limits.has_position_limits:
