@@ -187,16 +187,15 @@ class GazeboRosApi:
                 continue
             sim.step()
             now = sim.time_ns
-            if last_clock is None or now - last_clock >= clock_period or now < last_clock:
-                wall = time.perf_counter()
-                # Faster than real time, one /clock per MIN_CLOCK_WALL_PERIOD is enough: at
-                # 50x that is still every 50 ms of sim time, fine for a rospy.Rate(10).
-                if last_clock is None or now < last_clock or \
-                        wall - last_clock_wall >= MIN_CLOCK_WALL_PERIOD:
-                    self.publish_clock()
-                    last_clock, last_clock_wall = now, wall
-                    if self.rtf.update(now * 1e-9):
-                        self._rtf_pub.publish(self.rtf.value)
+            # Faster than real time, one /clock per MIN_CLOCK_WALL_PERIOD is enough: at 50x
+            # that is still every 50 ms of sim time, fine for a rospy.Rate(10).
+            if last_clock is None or now < last_clock or (
+                    now - last_clock >= clock_period
+                    and time.perf_counter() - last_clock_wall >= MIN_CLOCK_WALL_PERIOD):
+                self.publish_clock()
+                last_clock, last_clock_wall = now, time.perf_counter()
+                if self.rtf.update(now * 1e-9):
+                    self._rtf_pub.publish(self.rtf.value)
             pacer.wait()
 
 
