@@ -65,6 +65,10 @@ class Criteria:
     def ok(self, m):
         return not self.failures(m)
 
+    def steady(self, m):
+        """Settled and still at the end (it does not shake), whatever the overshoot."""
+        return m.settled and m.jitter <= self.max_jitter
+
 
 def _crossing(times, values, i, level):
     """Time where the segment (i-1, i) crosses ``level`` (values[i-1] < level <= values[i])."""

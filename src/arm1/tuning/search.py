@@ -1,18 +1,25 @@
-"""Gain search: per joint, the gains whose steps settle fastest with overshoot <= 5 % and
-no jitter (metrics.Criteria), found by running the step protocol (steps.py).
+"""Gain search: the gains of all the tuned joints at once, chosen so that every joint's steps
+settle fastest with overshoot <= 5 % and no jitter (metrics.Criteria), found by running the
+step protocol (steps.py).
 
-The joints of an arm push on each other (arm1's joints 2-4 are strongly coupled),
-so the joints are tuned in turn, each with the others at their latest gains
-(Gauss-Seidel), for ``rounds`` rounds. For one joint, candidates are the gains in
-force, a seeded random sample of the search space (log-uniform p, d and i) and
-then random steps around the best so far, shrinking. Every candidate is one run of
-the protocol (two steps); candidates are spread over ``workers`` processes, each
-with its own headless simulation. The random generator is seeded: the same inputs
-give the same gains.
+arm1's joints push on each other too hard to be tuned one at a time: the inertia
+joint3 sees is 6e-6 kg m^2 with joints 2 and 4 free and 1e-4 with them held, so
+joint3's best gains depend on joint2's stiffness and joint4's damping, and a
+joint tuned alone can set a neighbour shaking. So one candidate is a whole gain
+set (p, d, i, i_clamp of every tuned joint) and its value is the sum over the
+tuned joints of the score of that joint's protocol run, in which the other
+joints must stay still too.
 
-A candidate's score is its worse step's settling time when it meets the criteria,
-else the hold time plus penalties for how far it misses them, so that the search is
-led towards feasible gains even when it starts far from them.
+The search is a cross-entropy method in log-gain space: each generation samples
+``population`` gain sets from a normal distribution (mean: the gains in force at
+first), keeps the ``elite`` best and moves the mean and spread towards them. The
+random generator is seeded and candidates are spread over ``workers`` processes,
+each with its own headless simulation: the same inputs give the same gains. The
+gains in force are the first candidate, so the result is never worse than them.
+
+A candidate's score per joint is its worse step's settling time when it meets the
+criteria, else the hold time plus penalties for how far it misses them, so that the
+search is led towards feasible gains even when it starts far from them.
 """
 import math
 import multiprocessing
@@ -25,28 +32,41 @@ from .metrics import Criteria, worst
 
 @dataclass
 class SearchSpace:
-    p: tuple = (0.1, 100.0)
-    d: tuple = (1e-5, 0.05)
-    i: tuple = (0.1, 300.0)  # a quarter of the samples use i = 0
-    i_clamp: float = 0.05  # fraction of the joint's effort limit (holds arm1 against gravity)
+    p: tuple = (0.03, 100.0)
+    d: tuple = (3e-5, 0.1)
+    i: tuple = (0.1, 1000.0)  # the bottom decade of the sampled range means i = 0
+    i_clamp: tuple = (0.01, 0.3)  # fraction of the joint's effort limit
     antiwindup: bool = True  # clamp the integral itself, so it does not wind up during a step
+
+    def bounds(self):
+        """(low, high) of the four log10 coordinates of one joint: p, d, i, i_clamp."""
+        return [tuple(math.log10(v) for v in self.p), tuple(math.log10(v) for v in self.d),
+                (math.log10(self.i[0]) - 1.0, math.log10(self.i[1])),
+                tuple(math.log10(v) for v in self.i_clamp)]
 
 
 @dataclass
 class Candidate:
-    joint: str
-    gains: dict
-    feasible: bool = False
-    score: float = math.inf
-    summary: object = None  # worst-of-steps StepMetrics
-    metrics: list = field(default_factory=list)
-    others_wobble: float = 0.0
-    failures: list = field(default_factory=list)
+    gains: dict  # joint -> gains, every joint of the robot
+    value: float = math.inf  # sum of the tuned joints' scores
+    results: dict = field(default_factory=dict)  # joint -> (feasible, score, worst, failures)
+
+    @property
+    def feasible(self):
+        return all(r[0] for r in self.results.values())
+
+
+UNSTEADY = 20.0  # score penalty for not settling or jitter: shaking is worse than overshoot
 
 
 def score(metrics, criteria, hold, others_jitter=0.0):
     """(feasible, score, worst StepMetrics, failures) of a run's step metrics; the other
-    joints must be as still as the stepped one at the end of each hold."""
+    joints must be as still as the stepped one at the end of each hold.
+
+    Lower is better. Feasible: the worse step's settling time (< hold). Otherwise
+    hold + settling time + overshoot beyond the limit in units of the limit, and
+    UNSTEADY more when the joint does not settle or jitters, so that gains which
+    do not shake but overshoot rank before gains which shake."""
     w = worst(metrics)
     fails = criteria.failures(w)
     if others_jitter > criteria.max_jitter:
@@ -57,9 +77,9 @@ def score(metrics, criteria, hold, others_jitter=0.0):
     s = hold + (w.settling_time if math.isfinite(w.settling_time) else hold)
     s += max(0.0, w.overshoot - criteria.max_overshoot) / max(criteria.max_overshoot, 1e-9)
     if w.jitter > criteria.max_jitter:
-        s += 1.0 + math.log10(w.jitter / criteria.max_jitter)
+        s += UNSTEADY + math.log10(w.jitter / criteria.max_jitter)
     if not math.isfinite(w.settling_time):
-        s += 1.0 + 10.0 * abs(w.steady_state_error) / max(abs(w.size), 1e-9)
+        s += UNSTEADY + 10.0 * abs(w.steady_state_error) / max(abs(w.size), 1e-9)
     return False, s, w, fails
 
 
@@ -108,129 +128,117 @@ class Evaluator:
 
 class GainSearch:
     def __init__(self, evaluator, joints, initial_gains, effort_limits, protocol,
-                 criteria=None, space=None, rounds=2, runs_per_joint=60, seed=0, progress=None):
+                 criteria=None, space=None, generations=14, population=20, elite=6, seed=0,
+                 progress=None):
         self.evaluator = evaluator
-        self.joints = list(joints)
-        self.gains = {j: dict(g) for j, g in initial_gains.items()}
+        self.joints = list(joints)  # the tuned joints: their gains change, their runs are scored
+        self.initial = {j: dict(g) for j, g in initial_gains.items()}
         self.effort_limits = effort_limits
         self.protocol = protocol
         self.criteria = criteria or Criteria()
         self.space = space or SearchSpace()
-        self.rounds = rounds
-        self.runs_per_joint = runs_per_joint
+        self.generations = generations
+        self.population = population
+        self.elite = max(2, min(elite, population))
         self.rng = random.Random(seed)
         self.progress = progress or (lambda done, total, text: None)
-        self.best = {}  # joint -> Candidate
-        self.total = rounds * len(self.joints) * runs_per_joint
+        self.total = generations * population
         self.done = 0
+        self.best = None  # Candidate
 
-    # -- candidates ---------------------------------------------------------------
-    def _base(self, joint):
-        g = dict(self.gains[joint])
-        limit = self.effort_limits.get(joint) or 1.0
-        clamp = float('%.4g' % (self.space.i_clamp * limit))
-        g.update(i_clamp_max=clamp, i_clamp_min=-clamp, antiwindup=self.space.antiwindup)
-        return g
+    # -- coordinates: per tuned joint log10 p, d, i, i_clamp/effort --------------------
+    def _limit(self, joint):
+        return self.effort_limits.get(joint) or 1.0
 
-    def _random(self, joint):
-        s, rng = self.space, self.rng
-        g = self._base(joint)
-        g['p'] = _log_uniform(rng, *s.p)
-        g['d'] = _log_uniform(rng, *s.d)
-        g['i'] = 0.0 if rng.random() < 0.25 else _log_uniform(rng, *s.i)
-        return _rounded(g)
+    def _encode(self, joint, g):
+        (p0, p1), (d0, d1), (i0, i1), (c0, c1) = self.space.bounds()
+        clamp = max(abs(g.get('i_clamp_max', 0.0)), abs(g.get('i_clamp_min', 0.0)))
+        return [_clip(math.log10(g['p']) if g['p'] > 0 else p0, p0, p1),
+                _clip(math.log10(g['d']) if g['d'] > 0 else d0, d0, d1),
+                _clip(math.log10(g['i']) if g['i'] > 0 else i0, i0, i1),
+                _clip(math.log10(clamp / self._limit(joint)) if clamp > 0
+                      else math.log10(0.05), c0, c1)]
 
-    def _near(self, joint, around, spread):
-        s, rng = self.space, self.rng
-        g = dict(around)
-        g['p'] = _clip(around['p'] * 10 ** rng.gauss(0, spread), *s.p)
-        g['d'] = _clip(around['d'] * 10 ** rng.gauss(0, spread), *s.d)
-        if around['i'] > 0:
-            g['i'] = _clip(around['i'] * 10 ** rng.gauss(0, spread), *s.i)
-        elif rng.random() < 0.3:
-            g['i'] = _log_uniform(rng, *s.i)
-        return _rounded(g)
+    def _decode(self, x):
+        i_on = math.log10(self.space.i[0])
+        bounds = self.space.bounds()
+        gains = {j: dict(g) for j, g in self.initial.items()}
+        for k, joint in enumerate(self.joints):
+            lp, ld, li, lc = (_clip(v, lo, hi) for v, (lo, hi) in zip(x[4 * k:4 * k + 4], bounds))
+            clamp = 10 ** lc * self._limit(joint)
+            g = gains[joint]
+            g.update(p=10 ** lp, d=10 ** ld, i=10 ** li if li >= i_on else 0.0,
+                     i_clamp_max=clamp, i_clamp_min=-clamp, antiwindup=self.space.antiwindup)
+            gains[joint] = _rounded(g)
+        return gains
 
     # -- running ------------------------------------------------------------------
-    def _evaluate(self, joint, candidates, label):
-        tasks = []
-        for g in candidates:
-            all_gains = {j: dict(g) for j, g in self.gains.items()}
-            all_gains[joint] = g
-            tasks.append((joint, all_gains, self.protocol))
+    def evaluate(self, gain_sets, label=''):
+        """Candidates for whole gain sets: every tuned joint's run with that set."""
         out = []
-        batch = max(1, self.evaluator.workers) * 2
-        for k in range(0, len(tasks), batch):
-            results = self.evaluator.map(tasks[k:k + batch])
-            for g, (metrics, wobble, jitter) in zip(candidates[k:k + batch], results):
-                feasible, s, w, fails = score(metrics, self.criteria, self.protocol.hold, jitter)
-                out.append(Candidate(joint, g, feasible, s, w, metrics, wobble, fails))
-            self.done += len(results)
-            best = min(out + ([self.best[joint]] if joint in self.best else []),
-                       key=lambda c: c.score)
-            self.progress(self.done, self.total, '%s %s  best %s' % (joint, label, describe(best)))
+        step = max(1, self.evaluator.workers) * 2
+        for k in range(0, len(gain_sets), step):
+            sets = gain_sets[k:k + step]
+            results = self.evaluator.map([(j, g, self.protocol) for g in sets for j in self.joints])
+            for n, g in enumerate(sets):
+                c = Candidate(g)
+                runs = results[n * len(self.joints):(n + 1) * len(self.joints)]
+                for joint, (metrics, _, jitter) in zip(self.joints, runs):
+                    c.results[joint] = score(metrics, self.criteria, self.protocol.hold, jitter)
+                c.value = sum(r[1] for r in c.results.values())
+                out.append(c)
+            self.done += len(sets)
+            self.progress(self.done, self.total, label)
         return out
 
-    def tune_joint(self, joint, round_index):
-        n = self.runs_per_joint
-        label = 'round %d/%d' % (round_index + 1, self.rounds)
-        incumbent = dict(self.gains[joint])
-        n_global = n // 3 if round_index == 0 else n // 6
-        first = [incumbent] + [self._random(joint) for _ in range(n_global - 1)]
-        pool = self._evaluate(joint, first, label)
-        best = min(pool, key=lambda c: c.score)
-        spread, left = 0.4, n - len(first)
-        while left > 0:
-            k = min(left, max(2, self.evaluator.workers) * 2)
-            batch = [self._near(joint, best.gains, spread) for _ in range(k)]
-            results = self._evaluate(joint, batch, label)
-            left -= k
-            top = min(results, key=lambda c: c.score)
-            if top.score < best.score:
-                best = top
-            else:
-                spread = max(0.05, spread * 0.7)
-        return best
-
-    def set_score(self, gains):
-        """Sum over the joints of their scores with ``gains`` for every joint."""
-        tasks = [(j, {k: dict(g) for k, g in gains.items()}, self.protocol) for j in self.joints]
-        results = self.evaluator.map(tasks)
-        self.done += len(tasks)
-        self._last_set = {j: score(m, self.criteria, self.protocol.hold, jit)
-                          for j, (m, _, jit) in zip(self.joints, results)}
-        return sum(v[1] for v in self._last_set.values())
-
     def run(self):
-        """Gauss-Seidel over the joints; a joint's new gains are kept only if the whole set
-        scores better with them (the joints are coupled), so the result is never worse than
-        the gains it started from."""
-        self.total += (1 + self.rounds * len(self.joints)) * len(self.joints)
-        current = self.set_score(self.gains)
-        self.set_results = self._last_set  # joint -> (feasible, score, worst, failures)
-        for r in range(self.rounds):
-            for joint in self.joints:
-                best = self.tune_joint(joint, r)
-                if best.gains == self.gains[joint]:
-                    continue
-                trial = dict(self.gains)
-                trial[joint] = dict(best.gains)
-                value = self.set_score(trial)
-                if value < current:
-                    current = value
-                    self.set_results = self._last_set
-                    self.gains = trial
-                    self.best[joint] = best
-        self.set_value = current
-        return self.gains
+        """The best gain set found; the gains in force are the first candidate."""
+        bounds = self.space.bounds() * len(self.joints)
+        mean = []
+        for j in self.joints:
+            mean += self._encode(j, self.initial[j])
+        spread = [(hi - lo) / 4.0 for lo, hi in bounds]
+        incumbent = {j: dict(g) for j, g in self.initial.items()}
+        for g in range(self.generations):
+            xs = [[_clip(m + s * self.rng.gauss(0, 1), lo, hi)
+                   for m, s, (lo, hi) in zip(mean, spread, bounds)]
+                  for _ in range(self.population - (1 if g == 0 else 0))]
+            sets = ([incumbent] if g == 0 else []) + [self._decode(x) for x in xs]
+            if g == 0:
+                xs = [list(mean)] + xs
+            label = 'generation %d/%d  best %s' % (g + 1, self.generations, describe(self.best))
+            cands = self.evaluate(sets, label)
+            order = sorted(range(len(cands)), key=lambda n: cands[n].value)
+            if self.best is None or cands[order[0]].value < self.best.value:
+                self.best = cands[order[0]]
+            elite = [xs[n] for n in order[:self.elite]]
+            for k in range(len(mean)):
+                values = [e[k] for e in elite]
+                m = sum(values) / len(values)
+                sd = math.sqrt(sum((v - m) ** 2 for v in values) / len(values))
+                mean[k] = 0.7 * m + 0.3 * mean[k]
+                spread[k] = max(0.03, 0.7 * sd + 0.3 * spread[k])
+        self.progress(self.total, self.total, 'done  best %s' % describe(self.best))
+        return self.best.gains
+
+    @property
+    def set_results(self):
+        return self.best.results
+
+    @property
+    def set_value(self):
+        return self.best.value
 
 
 def describe(c):
-    if c.summary is None:
+    """One line on a Candidate: per joint ok or its worst overshoot."""
+    if c is None:
         return '-'
-    w = c.summary
-    return '%s settle %s, overshoot %.1f%%, jitter %.2g rad' % (
-        'ok' if c.feasible else 'NOT ok', fmt_time(w.settling_time), w.overshoot, w.jitter)
+    def one(r):
+        if r[0]:
+            return 'ok'
+        return '%.0f%%%s' % (r[2].overshoot, '' if r[1] < UNSTEADY else ' shakes')
+    return ', '.join('%s %s' % (j, one(r)) for j, r in c.results.items())
 
 
 def fmt_time(t):
@@ -241,10 +249,6 @@ def _rounded(g):
     """Gains as the yaml snippet prints them (4 significant digits): what is evaluated is
     exactly what is shipped."""
     return {k: (v if isinstance(v, bool) else float('%.4g' % v)) for k, v in g.items()}
-
-
-def _log_uniform(rng, lo, hi):
-    return 10 ** rng.uniform(math.log10(lo), math.log10(hi))
 
 
 def _clip(v, lo, hi):
