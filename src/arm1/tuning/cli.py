@@ -18,7 +18,7 @@ import yaml
 from .. import xacro_bridge
 from .metrics import BAND, FINAL_WINDOW, Criteria
 from .search import Evaluator, GainSearch, ProgressBar, SearchSpace, fmt_time, score
-from .steps import ARM1_START, Protocol, StepRig, yaml_pid
+from .steps import ARM1_POSES, ARM1_START, Protocol, StepRig, pose_text, yaml_pid
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
@@ -55,6 +55,10 @@ def parse_args(argv):
     ap.add_argument('--start', action='append', default=[], metavar='JOINT=RAD',
                     help='start pose (repeatable; default for arm1: joint2=%g, others 0)'
                     % ARM1_START['joint2'])
+    ap.add_argument('--pose', action='append', metavar='JOINT=RAD[,JOINT=RAD...]',
+                    help='another start pose to step from, joints not named at 0 (repeatable; '
+                    'default for arm1: %s; "none" for the start pose only)'
+                    % ','.join('%s=%g' % kv for kv in sorted(ARM1_POSES[0].items())))
     ap.add_argument('--step', type=float, default=Protocol.step, help='step size, rad (%(default)s)')
     ap.add_argument('--settle', type=float, default=Protocol.settle,
                     help='s of holding before the first step (%(default)s)')
@@ -65,9 +69,9 @@ def parse_args(argv):
     ap.add_argument('--max-jitter', type=float, default=Criteria.max_jitter,
                     help='rad peak to peak once settled (%(default)s)')
     ap.add_argument('--search', action='store_true', help='search for better gains')
-    ap.add_argument('--generations', type=int, default=14,
+    ap.add_argument('--generations', type=int, default=7,
                     help='search generations (%(default)s)')
-    ap.add_argument('--population', type=int, default=20,
+    ap.add_argument('--population', type=int, default=16,
                     help='gain sets tried per generation (%(default)s)')
     ap.add_argument('--workers', type=int, default=min(2, os.cpu_count() or 1),
                     help='processes for the search (%(default)s)')
@@ -101,14 +105,30 @@ class Setup:
             self.params = yaml.safe_load(f) or {}
         self.world = args.world or (_arm1('worlds/willow_garage.world') if self.arm1 else None)
         start = dict(ARM1_START) if self.arm1 else {}
-        for item in args.start:
-            joint, _, value = item.partition('=')
-            start[joint.strip()] = float(value)
-        self.protocol = Protocol(start, args.step, args.settle, args.hold)
+        start.update(parse_pose(args.start))
+        if args.pose is None:
+            poses = [dict(p) for p in ARM1_POSES] if self.arm1 else []
+        else:
+            poses = [parse_pose(p.split(',')) for p in args.pose if p.strip() != 'none']
+        self.protocol = Protocol(start, args.step, args.settle, args.hold, poses)
         self.criteria = Criteria(args.max_overshoot, args.max_jitter)
 
     def rig(self, params=None):
         return StepRig(self.urdf, params or self.params, self.world, find_package)
+
+
+def parse_pose(items):
+    """``['joint2=0.6', 'joint3=0.5']`` -> ``{'joint2': 0.6, 'joint3': 0.5}``."""
+    pose = {}
+    for item in items:
+        joint, sep, value = item.partition('=')
+        try:
+            pose[joint.strip()] = float(value)
+        except ValueError:
+            raise SystemExit("tune: a pose is JOINT=RAD, not '%s'" % item)
+        if not sep or not joint.strip():
+            raise SystemExit("tune: a pose is JOINT=RAD, not '%s'" % item)
+    return pose
 
 
 def with_gains(params, namespace, controllers, gains):
@@ -129,14 +149,16 @@ HEADER = '%-8s %-5s %8s %8s %8s %10s %9s %9s  %s' % (
 
 
 def verdict(run, criteria):
-    """'ok', or what is wrong, naming whether the joint shakes (does not settle, jitters,
-    or leaves the other joints jittering) or only overshoots."""
+    """'ok', or what is wrong: whether the joint shakes (jitters, or leaves the other
+    joints jittering), does not settle, or only overshoots."""
     feasible, _, w, fails = score(run.metrics, criteria, 0.0, run.others_jitter)
     if feasible:
         return 'ok'
-    if w.settled and w.jitter <= criteria.max_jitter:
-        return 'does not shake, but ' + '; '.join(fails)
-    return 'NOT ok, shakes: ' + '; '.join(fails)
+    if any('jitter' in f for f in fails):
+        return 'NOT ok, shakes: ' + '; '.join(fails)
+    if not w.settled:
+        return 'NOT ok: ' + '; '.join(fails)
+    return 'does not shake, but ' + '; '.join(fails)
 
 
 def metric_rows(joint, run, criteria):
@@ -146,7 +168,8 @@ def metric_rows(joint, run, criteria):
             joint, name, m.start, m.target,
             '%.3f s' % m.rise_time if not math.isnan(m.rise_time) else '-',
             m.overshoot, fmt_time(m.settling_time), m.steady_state_error, m.jitter))
-    rows.append('%-8s %s' % ('', verdict(run, criteria)))
+    rows.append('%-8s %s (other joints moved up to %.3f rad)' % (
+        '', verdict(run, criteria), run.others_wobble))
     return rows
 
 
@@ -156,17 +179,26 @@ def gains_text(g):
 
 
 def measure_all(rig, joints, protocol):
-    return {j: rig.run(j, protocol) for j in joints}
+    """``[{joint: StepRun}]``, one dict per start pose of the protocol."""
+    return [{j: rig.run(j, v) for j in joints} for v in protocol.variants()]
 
 
-def report(title, runs, gains, criteria, out):
+def report(title, runs_by_pose, gains, criteria, protocol, out):
     print('\n%s' % title, file=out)
-    print(HEADER, file=out)
-    for j, run in runs.items():
-        print('%-8s gains: %s; other joints moved up to %.3f rad' % (
-            j, gains_text(gains[j]), run.others_wobble), file=out)
-        for row in metric_rows(j, run, criteria):
-            print(row, file=out)
+    for j in runs_by_pose[0]:
+        print('%-8s %s' % (j, gains_text(gains[j])), file=out)
+    for variant, runs in zip(protocol.variants(), runs_by_pose):
+        print('start pose %s:' % pose_text(variant.start), file=out)
+        print(HEADER, file=out)
+        for j, run in runs.items():
+            for row in metric_rows(j, run, criteria):
+                print(row, file=out)
+
+
+def failing(runs_by_pose, criteria):
+    """Joints whose runs miss the criteria from any start pose."""
+    return sorted({j for runs in runs_by_pose for j, run in runs.items()
+                   if verdict(run, criteria) != 'ok'})
 
 
 def snippet(namespace, controllers, gains):
@@ -242,7 +274,7 @@ def main(argv=None, out=sys.stdout):
         current = {j: dict(rig.gains[j]) for j in rig.joints}
         before = measure_all(rig, joints, setup.protocol)
         report('current gains (%s):' % setup.controllers_path, before, current, setup.criteria,
-               out)
+               setup.protocol, out)
         found = None
         if args.search:
             effort = {j: rig.hw.handles[j].limits.effort for j in rig.joints}
@@ -264,8 +296,9 @@ def main(argv=None, out=sys.stdout):
             finally:
                 check.close()
             report('found gains (%d runs in %.1f s), checked in a fresh simulation:' % (
-                evaluator.runs, time.monotonic() - t0), after, found_full, setup.criteria, out)
-            bad = [j for j in joints if verdict(after[j], setup.criteria) != 'ok']
+                evaluator.runs, time.monotonic() - t0), after, found_full, setup.criteria,
+                setup.protocol, out)
+            bad = failing(after, setup.criteria)
             print('\n%s' % ('all joints meet the criteria' if not bad else
                             'NOT met for %s: the best found is shown' % ', '.join(bad)), file=out)
             print('\n# for config/controllers.yaml (tune --search, seed %d):' % args.seed, file=out)
@@ -278,7 +311,9 @@ def main(argv=None, out=sys.stdout):
                 print('wrote %s' % args.save, file=out)
         if args.plot:
             from .plot import plot_runs
-            paths = plot_runs(args.plot, before, after if found else None, setup.protocol)
+            # the first start pose's runs: one figure per joint, current against found
+            paths = plot_runs(args.plot, before[0], after[0] if found else None,
+                              setup.protocol.variants()[0])
             print('\nplots: %s' % ', '.join(paths), file=out)
         print('done in %.1f s' % (time.monotonic() - t0), file=out)
         return 0

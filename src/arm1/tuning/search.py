@@ -6,9 +6,10 @@ arm1's joints push on each other too hard to be tuned one at a time: the inertia
 joint3 sees is 6e-6 kg m^2 with joints 2 and 4 free and 1e-4 with them held, so
 joint3's best gains depend on joint2's stiffness and joint4's damping, and a
 joint tuned alone can set a neighbour shaking. So one candidate is a whole gain
-set (p, d, i, i_clamp of every tuned joint) and its value is the sum over the
-tuned joints of the score of that joint's protocol run, in which the other
-joints must stay still too.
+set (p, d, i, i_clamp of every tuned joint) and its value is the sum of the
+scores of every tuned joint's protocol run from every start pose of the
+protocol (in which the other joints must stay still too): gains that suit one
+pose alone can shake at another.
 
 The search is a cross-entropy method in log-gain space: each generation samples
 ``population`` gain sets from a normal distribution (mean: the gains in force at
@@ -17,7 +18,7 @@ random generator is seeded and candidates are spread over ``workers`` processes,
 each with its own headless simulation: the same inputs give the same gains. The
 gains in force are the first candidate, so the result is never worse than them.
 
-A candidate's score per joint is its worse step's settling time when it meets the
+A run's score is its worse step's settling time when it meets the
 criteria, else the hold time plus penalties for how far it misses them, so that the
 search is led towards feasible gains even when it starts far from them.
 """
@@ -37,6 +38,7 @@ class SearchSpace:
     i: tuple = (0.1, 1000.0)  # the bottom decade of the sampled range means i = 0
     i_clamp: tuple = (0.01, 0.3)  # fraction of the joint's effort limit
     antiwindup: bool = True  # clamp the integral itself, so it does not wind up during a step
+    spread: float = 0.25  # first generation's standard deviation, a fraction of each range
 
     def bounds(self):
         """(low, high) of the four log10 coordinates of one joint: p, d, i, i_clamp."""
@@ -48,8 +50,9 @@ class SearchSpace:
 @dataclass
 class Candidate:
     gains: dict  # joint -> gains, every joint of the robot
-    value: float = math.inf  # sum of the tuned joints' scores
-    results: dict = field(default_factory=dict)  # joint -> (feasible, score, worst, failures)
+    value: float = math.inf  # sum of the scores of the tuned joints' runs
+    # (joint, start pose index) -> (feasible, score, worst StepMetrics, failures)
+    results: dict = field(default_factory=dict)
 
     @property
     def feasible(self):
@@ -128,13 +131,14 @@ class Evaluator:
 
 class GainSearch:
     def __init__(self, evaluator, joints, initial_gains, effort_limits, protocol,
-                 criteria=None, space=None, generations=14, population=20, elite=6, seed=0,
+                 criteria=None, space=None, generations=7, population=16, elite=6, seed=0,
                  progress=None):
         self.evaluator = evaluator
         self.joints = list(joints)  # the tuned joints: their gains change, their runs are scored
         self.initial = {j: dict(g) for j, g in initial_gains.items()}
         self.effort_limits = effort_limits
         self.protocol = protocol
+        self.variants = protocol.variants() if protocol is not None else []
         self.criteria = criteria or Criteria()
         self.space = space or SearchSpace()
         self.generations = generations
@@ -174,17 +178,18 @@ class GainSearch:
 
     # -- running ------------------------------------------------------------------
     def evaluate(self, gain_sets, label=''):
-        """Candidates for whole gain sets: every tuned joint's run with that set."""
+        """Candidates for whole gain sets: every tuned joint's run from every start pose."""
+        keys = [(j, k) for j in self.joints for k in range(len(self.variants))]
         out = []
         step = max(1, self.evaluator.workers) * 2
-        for k in range(0, len(gain_sets), step):
-            sets = gain_sets[k:k + step]
-            results = self.evaluator.map([(j, g, self.protocol) for g in sets for j in self.joints])
-            for n, g in enumerate(sets):
+        for n in range(0, len(gain_sets), step):
+            sets = gain_sets[n:n + step]
+            results = self.evaluator.map([(j, g, self.variants[k]) for g in sets
+                                          for j, k in keys])
+            for m, g in enumerate(sets):
                 c = Candidate(g)
-                runs = results[n * len(self.joints):(n + 1) * len(self.joints)]
-                for joint, (metrics, _, jitter) in zip(self.joints, runs):
-                    c.results[joint] = score(metrics, self.criteria, self.protocol.hold, jitter)
+                for key, (metrics, _, jitter) in zip(keys, results[m * len(keys):]):
+                    c.results[key] = score(metrics, self.criteria, self.protocol.hold, jitter)
                 c.value = sum(r[1] for r in c.results.values())
                 out.append(c)
             self.done += len(sets)
@@ -197,7 +202,7 @@ class GainSearch:
         mean = []
         for j in self.joints:
             mean += self._encode(j, self.initial[j])
-        spread = [(hi - lo) / 4.0 for lo, hi in bounds]
+        spread = [(hi - lo) * self.space.spread for lo, hi in bounds]
         incumbent = {j: dict(g) for j, g in self.initial.items()}
         for g in range(self.generations):
             xs = [[_clip(m + s * self.rng.gauss(0, 1), lo, hi)
@@ -231,14 +236,20 @@ class GainSearch:
 
 
 def describe(c):
-    """One line on a Candidate: per joint ok or its worst overshoot."""
+    """One line on a Candidate: per joint ok, or its worst overshoot and whether it is
+    unsteady (does not settle or jitters)."""
     if c is None:
         return '-'
-    def one(r):
-        if r[0]:
+    joints = {}
+    for (joint, _), r in c.results.items():
+        joints.setdefault(joint, []).append(r)
+
+    def one(rs):
+        if all(r[0] for r in rs):
             return 'ok'
-        return '%.0f%%%s' % (r[2].overshoot, '' if r[1] < UNSTEADY else ' shakes')
-    return ', '.join('%s %s' % (j, one(r)) for j, r in c.results.items())
+        unsteady = any(not r[0] and r[1] >= UNSTEADY for r in rs)
+        return '%.0f%%%s' % (max(r[2].overshoot for r in rs), ' unsteady' if unsteady else '')
+    return ', '.join('%s %s' % (j, one(rs)) for j, rs in joints.items())
 
 
 def fmt_time(t):

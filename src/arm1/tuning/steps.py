@@ -14,9 +14,11 @@ The step protocol, for one joint at a time (the others hold their start):
    upwards unless that would leave the joint's URDF range, then downwards;
 3. ``hold`` s later it jumps back to the start ("back"); ``hold`` s more.
 
-Both steps are measured (metrics.py). For arm1 the start pose is joint2 = 1.0 rad
-(upper arm raised 57 degrees, 0.57 rad below its upper limit) and the others 0, so
-no link touches the ground plane and no joint reaches a limit at either end of any
+Both steps are measured (metrics.py). A protocol may name more start poses; the
+runs are then repeated from each (Protocol.variants). For arm1 the start pose is
+joint2 = 1.0 rad (upper arm raised 57 degrees, 0.57 rad below its upper limit) and
+the others 0, and the second is joint2 = 0.6, joint3 = 0.5 (elbow bent up), so no
+link touches the ground plane and no joint reaches a limit at either end of any
 step; step 0.3 rad, settle 0.5 s, hold 2 s (4.5 s of simulated time per run).
 """
 import copy
@@ -34,6 +36,8 @@ from .metrics import FINAL_WINDOW, step_metrics
 JPC = JointPositionController.type_name
 
 ARM1_START = {'joint1': 0.0, 'joint2': 1.0, 'joint3': 0.0, 'joint4': 0.0}
+# A second pose, elbow bent up: gains tuned at one pose alone can shake at another.
+ARM1_POSES = [{'joint2': 0.6, 'joint3': 0.5}]
 
 
 @dataclass
@@ -42,12 +46,23 @@ class Protocol:
     step: float = 0.3  # rad
     settle: float = 0.5  # s before the first step
     hold: float = 2.0  # s after each step
+    poses: list = field(default_factory=list)  # more start poses the steps are repeated from
+
+    def variants(self):
+        """One single-pose Protocol per start pose, the main one first."""
+        return [Protocol(dict(pose), self.step, self.settle, self.hold)
+                for pose in [self.start] + list(self.poses)]
 
     def describe(self):
-        pose = ', '.join('%s %g' % kv for kv in sorted(self.start.items())) or 'all joints 0'
-        return ('start pose: %s (at rest); hold %g s, step %g rad out (up unless that leaves '
-                'the joint range), hold %g s, step back, hold %g s' % (
-                    pose, self.settle, self.step, self.hold, self.hold))
+        poses = ['(%d) %s' % (k + 1, pose_text(p.start)) for k, p in enumerate(self.variants())]
+        return ('start pose%s: %s (at rest); hold %g s, step %g rad out (up unless that '
+                'leaves the joint range), hold %g s, step back, hold %g s' % (
+                    's' if self.poses else '', '; '.join(poses) if self.poses else
+                    pose_text(self.start), self.settle, self.step, self.hold, self.hold))
+
+
+def pose_text(pose):
+    return ', '.join('%s %g' % kv for kv in sorted(pose.items())) or 'all joints 0'
 
 
 @dataclass
