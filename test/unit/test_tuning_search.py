@@ -174,3 +174,23 @@ def test_shipped_tuned_gains_do_not_shake_where_the_seeds_do(arm1_urdf, controll
     # the seed's gains: joints 2 and 3 never settle (no integral without i_clamp), and
     # joint1's steps leave the others jittering
     assert sum(v.startswith('NOT ok') for v in verdicts['seed']) >= 5, verdicts['seed']
+
+
+def test_poses_parse_and_bad_ones_are_named():
+    setup = cli.Setup(cli.parse_args(['--pose', 'joint2=0.9,joint3=-0.2', '--pose', 'joint2=1.2']))
+    assert [v.start for v in setup.protocol.variants()] == [
+        {'joint1': 0.0, 'joint2': 1.0, 'joint3': 0.0, 'joint4': 0.0},
+        {'joint2': 0.9, 'joint3': -0.2}, {'joint2': 1.2}]
+    assert cli.Setup(cli.parse_args(['--pose', 'none'])).protocol.variants()[1:] == []
+    for bad in ('joint2', 'joint2=up', '=0.3'):
+        try:
+            cli.parse_pose([bad])
+        except SystemExit as e:
+            assert "a pose is JOINT=RAD, not '%s'" % bad in str(e)
+        else:
+            raise AssertionError('accepted %r' % bad)
+
+
+def test_a_pose_naming_an_unknown_joint_is_refused(capsys):
+    assert cli.main(['--pose', 'joint9=0.3']) == 2
+    assert 'a start pose names joint9, not an actuated joint of arm1' in capsys.readouterr().err

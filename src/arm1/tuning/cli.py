@@ -263,6 +263,11 @@ def main(argv=None, out=sys.stdout):
             print('tune: no position controller for %s (have: %s)' % (
                 ', '.join(unknown), ', '.join(rig.joints)), file=sys.stderr)
             return 2
+        posed = sorted({j for v in setup.protocol.variants() for j in v.start} - set(rig.hw.handles))
+        if posed:
+            print('tune: a start pose names %s, not an actuated joint of %s (have: %s)' % (
+                ', '.join(posed), rig.model.name, ', '.join(rig.joints)), file=sys.stderr)
+            return 2
         print('robot %s (%s), controllers %s, namespace %s' % (
             rig.model.name, setup.urdf_path, setup.controllers_path, rig.namespace), file=out)
         print('protocol: %s' % setup.protocol.describe(), file=out)
