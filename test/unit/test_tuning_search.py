@@ -1,7 +1,7 @@
 """``tune --search`` on arm1, checked by independent step runs in a fresh simulation.
 
 Small search budgets keep these to seconds; the real one (``rosrun arm1 tune
---search``) tries 7 generations of 16 gain sets.
+--search``) tries 14 generations of 16 gain sets.
 """
 import io
 import math
@@ -66,7 +66,7 @@ def test_search_result_holds_up_in_an_independent_run(arm1_urdf, controllers_par
         check.close()
     # never worse than the seed, as the search promises, and the same numbers it saw
     assert sum(a[1] for a in after.values()) <= sum(b[1] for b in before.values()) + 1e-9
-    assert sum(a[1] for a in after.values()) == search.set_value
+    assert abs(sum(a[1] for a in after.values()) - search.set_value) < 1e-9
     assert sorted(after) == sorted(search.set_results) == [(j, k) for j in joints for k in (0, 1)]
     for key in after:  # each run meets the criteria in the check iff it did in the search
         feasible, value, _, fails = search.set_results[key]
@@ -194,3 +194,38 @@ def test_poses_parse_and_bad_ones_are_named():
 def test_a_pose_naming_an_unknown_joint_is_refused(capsys):
     assert cli.main(['--pose', 'joint9=0.3']) == 2
     assert 'a start pose names joint9, not an actuated joint of arm1' in capsys.readouterr().err
+
+
+class CannedEvaluator:
+    """Evaluator stand-in: a run settles in 0.1 s with 1 % overshoot when p >= 1, and
+    never settles otherwise; records which (joint, p, start pose) it was asked to run."""
+    workers = 1
+
+    def __init__(self):
+        self.asked = []
+
+    def map(self, tasks):
+        out = []
+        for joint, gains, protocol in tasks:
+            self.asked.append((joint, gains[joint]['p'], protocol.start.get('joint2')))
+            settle = 0.1 if gains[joint]['p'] >= 1.0 else math.inf
+            out.append(([metrics(1.0, settle, 1e-6), metrics(1.0, settle, 1e-6)], 0.0, 0.0))
+        return out
+
+
+def test_racing_runs_the_second_pose_only_for_steady_or_best_sets():
+    from arm1.tuning.steps import Protocol
+    protocol = Protocol({'joint2': 1.0}, poses=[{'joint2': 0.6}])
+    base = {'p': 1.0, 'i': 0.0, 'd': 0.01, 'i_clamp_max': 0.05, 'i_clamp_min': -0.05,
+            'antiwindup': True}
+    fake = CannedEvaluator()
+    search = GainSearch(fake, ['joint1'], {'joint1': base}, {'joint1': 1.0}, protocol)
+    sets = [{'joint1': dict(base, p=p)} for p in (0.1, 0.2, 0.3, 2.0, 0.4)]
+    cands = search.evaluate(sets, always=[0])
+    second = sorted(p for _, p, pose in fake.asked if pose == 0.6)
+    # steady (p 2), the two best by the first pose (p 2 and the first unsteady one, p 0.1),
+    # and the one asked for always (index 0, p 0.1)
+    assert second == [0.1, 2.0]
+    assert [c.complete for c in cands] == [True, False, False, True, False]
+    assert cands[3].value == 0.2 and cands[3].feasible
+    assert cands[1].value == 2 * cands[1].results[('joint1', 0)][1]  # the estimate

@@ -69,7 +69,7 @@ def parse_args(argv):
     ap.add_argument('--max-jitter', type=float, default=Criteria.max_jitter,
                     help='rad peak to peak once settled (%(default)s)')
     ap.add_argument('--search', action='store_true', help='search for better gains')
-    ap.add_argument('--generations', type=int, default=7,
+    ap.add_argument('--generations', type=int, default=14,
                     help='search generations (%(default)s)')
     ap.add_argument('--population', type=int, default=16,
                     help='gain sets tried per generation (%(default)s)')

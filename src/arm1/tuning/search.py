@@ -13,7 +13,10 @@ pose alone can shake at another.
 
 The search is a cross-entropy method in log-gain space: each generation samples
 ``population`` gain sets from a normal distribution (mean: the gains in force at
-first), keeps the ``elite`` best and moves the mean and spread towards them. The
+first), keeps the ``elite`` best and moves the mean and spread towards them. A set
+is run from the protocol's first start pose, and from the others only if it is
+steady there or among the best two of its generation (racing): a set that shakes at one
+pose is not worth trying at more, and this about halves the cost. The
 random generator is seeded and candidates are spread over ``workers`` processes,
 each with its own headless simulation: the same inputs give the same gains. The
 gains in force are the first candidate, so the result is never worse than them.
@@ -53,6 +56,7 @@ class Candidate:
     value: float = math.inf  # sum of the scores of the tuned joints' runs
     # (joint, start pose index) -> (feasible, score, worst StepMetrics, failures)
     results: dict = field(default_factory=dict)
+    complete: bool = True  # run from every start pose (else value is an estimate)
 
     @property
     def feasible(self):
@@ -131,7 +135,7 @@ class Evaluator:
 
 class GainSearch:
     def __init__(self, evaluator, joints, initial_gains, effort_limits, protocol,
-                 criteria=None, space=None, generations=7, population=16, elite=6, seed=0,
+                 criteria=None, space=None, generations=14, population=16, elite=6, seed=0,
                  progress=None):
         self.evaluator = evaluator
         self.joints = list(joints)  # the tuned joints: their gains change, their runs are scored
@@ -177,23 +181,46 @@ class GainSearch:
         return gains
 
     # -- running ------------------------------------------------------------------
-    def evaluate(self, gain_sets, label=''):
-        """Candidates for whole gain sets: every tuned joint's run from every start pose."""
-        keys = [(j, k) for j in self.joints for k in range(len(self.variants))]
+    def evaluate(self, gain_sets, label='', always=()):
+        """Candidates for whole gain sets: every tuned joint's run from the first start pose,
+        and from the other poses only for the sets steady at the first one, the two best
+        and those whose index is in ``always`` (racing: a set that shakes at one pose need
+        not be tried at more). The others' values are estimates (the first pose's sum
+        once per pose): they steer the search but are never chosen as the best."""
+        first = self._scores(gain_sets, [0], label)
+        cands = [Candidate(g, sum(r[1] for r in res.values()), res)
+                 for g, res in zip(gain_sets, first)]
+        if len(self.variants) < 2:
+            return cands
+        ranked = sorted(range(len(cands)), key=lambda n: cands[n].value)
+        more = sorted(set(ranked[:2]) | set(always) | {
+            n for n, c in enumerate(cands) if all(r[1] < UNSTEADY for r in c.results.values())})
+        rest = self._scores([gain_sets[n] for n in more], range(1, len(self.variants)), None)
+        for n, c in enumerate(cands):
+            if n in more:
+                c.results.update(rest[more.index(n)])
+                c.value = sum(r[1] for r in c.results.values())
+            else:
+                c.value *= len(self.variants)
+                c.complete = False
+        return cands
+
+    def _scores(self, gain_sets, poses, label):
+        """Per gain set, {(joint, pose index): score tuple} of the tuned joints' runs."""
+        keys = [(j, k) for j in self.joints for k in poses]
         out = []
         step = max(1, self.evaluator.workers) * 2
         for n in range(0, len(gain_sets), step):
             sets = gain_sets[n:n + step]
             results = self.evaluator.map([(j, g, self.variants[k]) for g in sets
                                           for j, k in keys])
-            for m, g in enumerate(sets):
-                c = Candidate(g)
-                for key, (metrics, _, jitter) in zip(keys, results[m * len(keys):]):
-                    c.results[key] = score(metrics, self.criteria, self.protocol.hold, jitter)
-                c.value = sum(r[1] for r in c.results.values())
-                out.append(c)
-            self.done += len(sets)
-            self.progress(self.done, self.total, label)
+            for m in range(len(sets)):
+                runs = results[m * len(keys):(m + 1) * len(keys)]
+                out.append({key: score(metrics, self.criteria, self.protocol.hold, jitter)
+                            for key, (metrics, _, jitter) in zip(keys, runs)})
+            if label is not None:
+                self.done += len(sets)
+                self.progress(self.done, self.total, label)
         return out
 
     def run(self):
@@ -212,10 +239,12 @@ class GainSearch:
             if g == 0:
                 xs = [list(mean)] + xs
             label = 'generation %d/%d  best %s' % (g + 1, self.generations, describe(self.best))
-            cands = self.evaluate(sets, label)
+            cands = self.evaluate(sets, label, always=[0] if g == 0 else [])
             order = sorted(range(len(cands)), key=lambda n: cands[n].value)
-            if self.best is None or cands[order[0]].value < self.best.value:
-                self.best = cands[order[0]]
+            complete = [c for c in cands if c.complete]
+            top = min(complete, key=lambda c: c.value) if complete else None
+            if top is not None and (self.best is None or top.value < self.best.value):
+                self.best = top
             elite = [xs[n] for n in order[:self.elite]]
             for k in range(len(mean)):
                 values = [e[k] for e in elite]
