@@ -209,8 +209,13 @@ class CannedEvaluator:
         for joint, gains, protocol in tasks:
             self.asked.append((joint, gains[joint]['p'], protocol.start.get('joint2')))
             settle = 0.1 if gains[joint]['p'] >= 1.0 else math.inf
-            out.append(([metrics(1.0, settle, 1e-6), metrics(1.0, settle, 1e-6)], 0.0, 0.0))
+            overshoot = self.overshoot(gains[joint]['p'])
+            out.append(([metrics(overshoot, settle, 1e-6), metrics(overshoot, settle, 1e-6)],
+                        0.0, 0.0))
         return out
+
+    def overshoot(self, p):
+        return 1.0
 
 
 def test_racing_runs_the_second_pose_only_for_steady_or_best_sets():
@@ -229,3 +234,22 @@ def test_racing_runs_the_second_pose_only_for_steady_or_best_sets():
     assert [c.complete for c in cands] == [True, False, False, True, False]
     assert cands[3].value == 0.2 and cands[3].feasible
     assert cands[1].value == 2 * cands[1].results[('joint1', 0)][1]  # the estimate
+
+
+def test_racing_tries_a_steady_set_at_the_second_pose_however_far_it_overshoots():
+    """Steady is settled and still, whatever the overshoot: a set with 150 % overshoot that
+    settles scores above UNSTEADY, yet it must not be dropped as if it shook."""
+    from arm1.tuning.steps import Protocol
+    protocol = Protocol({'joint2': 1.0}, poses=[{'joint2': 0.6}])
+    base = {'p': 1.0, 'i': 0.0, 'd': 0.01, 'i_clamp_max': 0.05, 'i_clamp_min': -0.05,
+            'antiwindup': True}
+    fake = CannedEvaluator()
+    fake.overshoot = lambda p: 150.0 if p == 1.5 else 1.0
+    search = GainSearch(fake, ['joint1'], {'joint1': base}, {'joint1': 1.0}, protocol)
+    sets = [{'joint1': dict(base, p=p)} for p in (0.1, 0.2, 0.3, 2.0, 1.5)]
+    cands = search.evaluate(sets)
+    assert cands[4].results[('joint1', 0)][1] > UNSTEADY  # the score alone would call it shaking
+    assert sorted(p for _, p, pose in fake.asked if pose == 0.6) == [0.1, 1.5, 2.0]
+    assert cands[4].complete and search.steady(cands[4]) and not search.steady(cands[1])
+    assert search.describe(cands[4]) == 'joint1 150%'
+    assert search.describe(cands[1]) == 'joint1 1% unsteady'

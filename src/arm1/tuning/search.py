@@ -194,16 +194,21 @@ class GainSearch:
             return cands
         ranked = sorted(range(len(cands)), key=lambda n: cands[n].value)
         more = sorted(set(ranked[:2]) | set(always) | {
-            n for n, c in enumerate(cands) if all(r[1] < UNSTEADY for r in c.results.values())})
+            n for n, c in enumerate(cands) if self.steady(c)})
         rest = self._scores([gain_sets[n] for n in more], range(1, len(self.variants)), None)
+        for n, res in zip(more, rest):
+            cands[n].results.update(res)
+            cands[n].value = sum(r[1] for r in cands[n].results.values())
         for n, c in enumerate(cands):
-            if n in more:
-                c.results.update(rest[more.index(n)])
-                c.value = sum(r[1] for r in c.results.values())
-            else:
+            if n not in more:
                 c.value *= len(self.variants)
                 c.complete = False
         return cands
+
+    def steady(self, c):
+        """Every run of a Candidate settles without jitter (its own or the other joints',
+        which score folds into the worst step's), however far it overshoots."""
+        return all(self.criteria.steady(r[2]) for r in c.results.values())
 
     def _scores(self, gain_sets, poses, label):
         """Per gain set, {(joint, pose index): score tuple} of the tuned joints' runs."""
@@ -238,7 +243,8 @@ class GainSearch:
             sets = ([incumbent] if g == 0 else []) + [self._decode(x) for x in xs]
             if g == 0:
                 xs = [list(mean)] + xs
-            label = 'generation %d/%d  best %s' % (g + 1, self.generations, describe(self.best))
+            label = 'generation %d/%d  best %s' % (
+                g + 1, self.generations, self.describe(self.best))
             cands = self.evaluate(sets, label, always=[0] if g == 0 else [])
             order = sorted(range(len(cands)), key=lambda n: cands[n].value)
             complete = [c for c in cands if c.complete]
@@ -252,8 +258,24 @@ class GainSearch:
                 sd = math.sqrt(sum((v - m) ** 2 for v in values) / len(values))
                 mean[k] = 0.7 * m + 0.3 * mean[k]
                 spread[k] = max(0.03, 0.7 * sd + 0.3 * spread[k])
-        self.progress(self.total, self.total, 'done  best %s' % describe(self.best))
+        self.progress(self.total, self.total, 'done  best %s' % self.describe(self.best))
         return self.best.gains
+
+    def describe(self, c):
+        """One line on a Candidate: per joint ok, or its worst overshoot and whether it is
+        unsteady (does not settle or jitters)."""
+        if c is None:
+            return '-'
+        joints = {}
+        for (joint, _), r in c.results.items():
+            joints.setdefault(joint, []).append(r)
+
+        def one(rs):
+            if all(r[0] for r in rs):
+                return 'ok'
+            unsteady = not all(self.criteria.steady(r[2]) for r in rs)
+            return '%.0f%%%s' % (max(r[2].overshoot for r in rs), ' unsteady' if unsteady else '')
+        return ', '.join('%s %s' % (j, one(rs)) for j, rs in joints.items())
 
     @property
     def set_results(self):
@@ -262,23 +284,6 @@ class GainSearch:
     @property
     def set_value(self):
         return self.best.value
-
-
-def describe(c):
-    """One line on a Candidate: per joint ok, or its worst overshoot and whether it is
-    unsteady (does not settle or jitters)."""
-    if c is None:
-        return '-'
-    joints = {}
-    for (joint, _), r in c.results.items():
-        joints.setdefault(joint, []).append(r)
-
-    def one(rs):
-        if all(r[0] for r in rs):
-            return 'ok'
-        unsteady = any(not r[0] and r[1] >= UNSTEADY for r in rs)
-        return '%.0f%%%s' % (max(r[2].overshoot for r in rs), ' unsteady' if unsteady else '')
-    return ', '.join('%s %s' % (j, one(rs)) for j, rs in joints.items())
 
 
 def fmt_time(t):
