@@ -284,27 +284,34 @@ def test_update_runs_only_running_controllers(rig):
     assert len(ros.messages(NS + '/joint_states')) == n_js + 1
 
 
+def switch_concurrently(cm, names, timeout):
+    """Each name started by its own STRICT switch_controller call on its own thread (as
+    rospy serves service calls), all waiting before physics steps again; then updates
+    until the calls return or 3 s pass. Returns {name: result} and whether any still waits."""
+    results = {}
+
+    def call(name):
+        results[name] = cm.switch_controller([name], [], STRICT, timeout)
+
+    threads = [threading.Thread(target=call, args=(n,), daemon=True) for n in names]
+    for t in threads:
+        t.start()
+        time.sleep(0.05)
+    end = time.monotonic() + 3.0
+    while any(t.is_alive() for t in threads) and time.monotonic() < end:
+        cm.update(0, 0.001)
+        time.sleep(0.002)
+    return results, any(t.is_alive() for t in threads)
+
+
 def test_concurrent_switch_requests_are_all_served(rig):
     """Two spawners in one namespace call switch_controller at the same time (rospy serves
     each call on its own thread). Both calls must be carried out and return True."""
     cm, _, _, _ = rig
     cm.load_controller('joint_state_controller')
     cm.load_controller('flap_controller')
-    results = {}
-
-    def call(name):
-        results[name] = cm.switch_controller([name], [], STRICT, 1.0)
-
-    threads = [threading.Thread(target=call, args=(n,), daemon=True)
-               for n in ('joint_state_controller', 'flap_controller')]
-    for t in threads:
-        t.start()
-        time.sleep(0.05)  # both requests are waiting before physics steps again
-    end = time.monotonic() + 3.0
-    while any(t.is_alive() for t in threads) and time.monotonic() < end:
-        cm.update(0, 0.001)
-        time.sleep(0.002)
-    assert not any(t.is_alive() for t in threads)
+    results, waiting = switch_concurrently(cm, ('joint_state_controller', 'flap_controller'), 1.0)
+    assert not waiting
     assert results == {'joint_state_controller': True, 'flap_controller': True}
     assert states(cm) == {'joint_state_controller': 'running', 'flap_controller': 'running'}
 
@@ -313,20 +320,7 @@ def test_concurrent_conflicting_switches_never_run_both(rig):
     cm, _, _, _ = rig
     cm.load_controller('flap_controller')
     cm.load_controller('flap_other_controller')
-    results = {}
-
-    def call(name):
-        results[name] = cm.switch_controller([name], [], STRICT, 0.5)
-
-    threads = [threading.Thread(target=call, args=(n,), daemon=True)
-               for n in ('flap_controller', 'flap_other_controller')]
-    for t in threads:
-        t.start()
-        time.sleep(0.05)
-    end = time.monotonic() + 3.0
-    while any(t.is_alive() for t in threads) and time.monotonic() < end:
-        cm.update(0, 0.001)
-        time.sleep(0.002)
+    results, _ = switch_concurrently(cm, ('flap_controller', 'flap_other_controller'), 0.5)
     running = [n for n, s in states(cm).items() if s == 'running']
     assert len(running) == 1
     assert results[running[0]] is True
