@@ -2,6 +2,8 @@
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
+from .limits import Limits
+
 SHAPES = ('plane', 'box', 'sphere', 'cylinder')
 
 
@@ -32,6 +34,7 @@ class WorldConfig:
     gravity: tuple = (0.0, 0.0, -9.8)
     models: list = field(default_factory=list)
     skipped: list = field(default_factory=list)  # (name, why) of what could not be built
+    limits: Limits = field(default_factory=Limits)  # what spawned content may cost
 
 
 def _numbers(text, n, what):
