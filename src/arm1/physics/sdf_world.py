@@ -35,6 +35,7 @@ class WorldConfig:
     models: list = field(default_factory=list)
     skipped: list = field(default_factory=list)  # (name, why) of what could not be built
     limits: Limits = field(default_factory=Limits)  # what spawned content may cost
+    lockstep: bool = False  # gzserver --lockstep: physics waits for every sensor frame
 
 
 def _numbers(text, n, what):

@@ -208,6 +208,9 @@ def parse_args(argv):
     parser.add_argument('--gui', action='store_true', help="open pybullet's window if a display exists")
     parser.add_argument('-e', '--physics', default='ode', help='ignored: pybullet is the engine')
     parser.add_argument('--verbose', action='store_true')
+    parser.add_argument('--lockstep', action='store_true', help=(
+        'physics waits for every camera frame (deterministic; the real-time factor drops '
+        'instead of the image rate)'))
     parser.add_argument('--real-time-factor', type=float, help='overrides the world file')
     parser.add_argument('--real-time-update-rate', type=float, help='overrides the world file')
     return parser.parse_args(argv)
@@ -222,6 +225,7 @@ def start_world(args):
     except SdfError as exc:
         rospy.logfatal(str(exc))
         sys.exit(1)
+    config.lockstep = args.lockstep
     for attr in ('real_time_factor', 'real_time_update_rate'):
         if getattr(args, attr) is not None:
             setattr(config, attr, getattr(args, attr))
