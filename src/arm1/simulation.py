@@ -3,13 +3,22 @@
 One ``step`` is what Gazebo does per physics iteration with gazebo_ros_control
 loaded: read the joints, update the controllers, write saturated efforts, step.
 """
+from __future__ import annotations
+
+import itertools
 import math
 import os
 import tempfile
 from dataclasses import dataclass, field
+from typing import Callable, Dict, List, Optional, Protocol, Sequence
 
-from .physics.camera import SensorManager, camera_sensors
-from .physics.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
+from .control.controller_manager import ControllerManager
+from .physics.camera import Camera, SensorManager, camera_sensors
+from .physics.limits import LimitError
+from .physics.names import IllegalName, check_name, shown
+from .physics.robot import Robot, RobotLoadError
+from .physics.sdf_world import WorldConfig
+from .physics.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
 from .physics.world import World
 from .robot_hw_sim import DefaultRobotHWSim
 
@@ -18,86 +27,150 @@ class SpawnError(ValueError):
     pass
 
 
+class Plugin(Protocol):
+    """What a model's plugin leaves in the ROS layer (services, topics, servers): gone on delete."""
+
+    def shutdown(self) -> None: ...
+
+
 @dataclass
 class Model:
+    """Everything one spawned model brought, so that deleting it is one call."""
     name: str
-    description: object  # urdf_model.RobotModel
-    robot: object  # physics Robot
-    hw: object = None  # DefaultRobotHWSim, when the URDF has the gazebo_ros_control plugin
-    controller_manager: object = None
+    description: RobotModel
+    robot: Robot
+    hw: Optional[DefaultRobotHWSim] = None  # when the URDF has the gazebo_ros_control plugin
+    controller_manager: Optional[ControllerManager] = None
     namespace: str = ''
-    cameras: list = field(default_factory=list)  # physics.camera.Camera, one per camera sensor
+    cameras: List[Camera] = field(default_factory=list)  # one per camera sensor
+    plugins: List[Plugin] = field(default_factory=list)  # the ROS layer's part, shut down on delete
+
+
+ControllerManagerFactory = Callable[[DefaultRobotHWSim, str], ControllerManager]
 
 
 class Simulation:
-    def __init__(self, world_config, gui=False):
+    def __init__(self, world_config: WorldConfig, gui: bool = False) -> None:
         self.config = world_config
+        self.limits = world_config.limits
         self.world = World(world_config, gui)
         self.step_ns = int(round(world_config.max_step_size * 1e9))
         self.period = self.step_ns * 1e-9
         self.steps = 0
-        self.models = {}
-        self._controlled = []  # models with a controller manager, in spawn order
+        self.models: Dict[str, Model] = {}
+        self._controlled: List[Model] = []  # models with a controller manager, in spawn order
         self._tmp = tempfile.TemporaryDirectory(prefix='arm1-sim-')
+        self._files = itertools.count(1)  # the world names its files itself, never from requests
         self.sensors = SensorManager(world_config)
 
     @property
-    def time_ns(self):
+    def time_ns(self) -> int:
         return self.steps * self.step_ns
 
-    def spawn_urdf(self, name, urdf_xml, position=(0, 0, 0), orientation=(0, 0, 0, 1),
-                   robot_namespace='', find_package=None, controller_manager_factory=None):
+    @property
+    def folder(self) -> str:
+        """The only folder the world writes to."""
+        return self._tmp.name
+
+    def spawn_urdf(self, name: str, urdf_xml: str, position: Sequence[float] = (0, 0, 0),
+                   orientation: Sequence[float] = (0, 0, 0, 1), robot_namespace: str = '',
+                   find_package: Optional[Callable[[str], str]] = None,
+                   controller_manager_factory: Optional[ControllerManagerFactory] = None,
+                   attach: Optional[Callable[[Model], None]] = None) -> Model:
         """Build a robot from URDF text; with the control plugin, give it a controller manager.
 
         ``find_package(name)`` resolves ``package://`` URIs; ``controller_manager_factory(hw,
-        namespace)`` makes the manager. Raises SpawnError with a message naming the culprit.
+        namespace)`` makes the manager; ``attach(model)`` lets the ROS layer add its plugins
+        (it may set ``controller_manager`` itself). Raises SpawnError with a message naming
+        the culprit; a failed spawn leaves nothing behind.
         """
+        limits = self.limits
+        try:
+            check_name(name, 'model', limits.name_length)
+        except IllegalName as exc:
+            raise SpawnError('cannot spawn: %s' % exc)
         if name in self.models:
             raise SpawnError("model name '%s' already exists" % name)
+        if not _finite_pose(position, orientation):
+            raise SpawnError("cannot spawn '%s': the initial pose is not 7 finite numbers" % name)
         try:
+            limits.check('models', len(self.models) + 1, "cannot spawn '%s'" % name)
+            limits.check('description_bytes', len(urdf_xml.encode('utf-8', 'replace')),
+                         "cannot spawn '%s': the robot description" % name)
             description = parse_urdf(urdf_xml)
             resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages)
             sensors = camera_sensors(description)
-        except UrdfError as exc:
+        except (UrdfError, LimitError) as exc:
             raise SpawnError("cannot spawn '%s': %s" % (name, exc))
-        path = os.path.join(self._tmp.name, '%s.urdf' % name)
+        path = os.path.join(self._tmp.name, 'model-%d.urdf' % next(self._files))
         with open(path, 'w') as f:
             f.write(resolved)
         load_args = (path, tuple(position), tuple(orientation), description.root_link == 'world')
-        robot = self.world.load_robot(*load_args)
+        try:
+            robot = self.world.load_robot(*load_args)
+        except RobotLoadError as exc:
+            os.unlink(path)
+            raise SpawnError("cannot spawn '%s': %s" % (name, exc))
         model = Model(name, description, robot)
-        plugin = description.control_plugin
-        if plugin is not None:
-            model.namespace = '/' + (plugin.robot_namespace or robot_namespace or name).strip('/')
-            try:
-                model.hw = DefaultRobotHWSim(description, robot)
-            except UrdfError as exc:
-                self.world.remove_robot(robot)
-                raise SpawnError("cannot spawn '%s': %s" % (name, exc))
-            if controller_manager_factory is not None:
-                model.controller_manager = controller_manager_factory(model.hw, model.namespace)
+        try:
+            self._attach_plugins(model, robot_namespace, controller_manager_factory)
+            model.cameras = self.sensors.add_robot(name, load_args, sensors)
+            if attach is not None:
+                attach(model)
+            if model.controller_manager is not None and model not in self._controlled:
                 self._controlled.append(model)
-        model.cameras = self.sensors.add_robot(name, load_args, sensors)
+        except (UrdfError, LimitError, SpawnError) as exc:
+            self._release(model)
+            raise SpawnError("cannot spawn '%s': %s" % (name, exc))
+        except BaseException:
+            self._release(model)
+            raise
         self.models[name] = model
         return model
 
-    def delete_model(self, name):
+    def _attach_plugins(self, model: Model, robot_namespace: str,
+                        factory: Optional[ControllerManagerFactory]) -> None:
+        plugin = model.description.control_plugin
+        if plugin is None:
+            return
+        ns = plugin.robot_namespace or robot_namespace or model.name
+        model.namespace = '/' + ns.strip('/')
+        model.hw = DefaultRobotHWSim(model.description, model.robot)
+        if factory is not None:
+            model.controller_manager = factory(model.hw, model.namespace)
+
+    def _release(self, model: Model) -> None:
+        """Undo what a (partly) spawned model set up, in the physics and the ROS layer."""
+        if model in self._controlled:
+            self._controlled.remove(model)
+        if model.controller_manager is not None:
+            model.controller_manager.shutdown()
+        for plugin in reversed(model.plugins):
+            plugin.shutdown()
+        model.plugins = []
+        self.sensors.remove_robot(model.name)
+        if model.robot in self.world.robots:
+            self.world.remove_robot(model.robot)
+
+    def delete_model(self, name: str) -> Model:
         model = self.models.pop(name, None)
         if model is None:
             raise SpawnError("model '%s' does not exist" % name)
-        if model in self._controlled:
-            self._controlled.remove(model)
-        self.world.remove_robot(model.robot)
-        self.sensors.remove_robot(name)
+        self._release(model)
         return model
 
-    def set_model_configuration(self, name, joint_names, positions):
+    def set_model_configuration(self, name: str, joint_names: Sequence[str],
+                                positions: Sequence[float]) -> None:
         model = self.models.get(name)
         if model is None:
             raise SpawnError("model '%s' does not exist" % name)
+        if len(joint_names) != len(positions):
+            raise SpawnError('joint_names lists %d joint(s) but joint_positions has %d value(s)'
+                             % (len(joint_names), len(positions)))
         unknown = [j for j in joint_names if j not in model.robot.joint_index]
         if unknown:
-            raise SpawnError("model '%s' has no joint(s) %s" % (name, ', '.join(unknown)))
+            raise SpawnError("model '%s' has no joint(s) %s"
+                             % (name, ', '.join(shown(j) for j in unknown[:10])))
         bad = [j for j, v in zip(joint_names, positions) if not math.isfinite(v)]
         if bad:
             raise SpawnError('non-finite position for joint(s) %s' % ', '.join(bad))
@@ -133,5 +206,10 @@ class Simulation:
         self._tmp.cleanup()
 
 
-def _no_packages(name):
+def _no_packages(name: str) -> str:
     raise LookupError(name)
+
+
+def _finite_pose(position: Sequence[float], orientation: Sequence[float]) -> bool:
+    values = list(position) + list(orientation)
+    return len(values) == 7 and all(math.isfinite(v) for v in values)

@@ -196,3 +196,19 @@ class ControllerManager:
                                   if e.state == 'running')
         for request in requests:
             request[2].set()
+
+    def shutdown(self) -> None:
+        """The model is being deleted: stop every controller, release every node handle, and
+        answer switch requests still waiting (they fail), so the same names can come back."""
+        with self._lock:
+            entries, self._loaded = list(self._loaded.values()), {}
+            pending, self._pending = self._pending, []
+            self._running = ()
+        for _, _, done, result in pending:
+            result.append(False)
+            done.set()
+        for entry in entries:
+            if entry.state == 'running':
+                entry.controller.stopping(0)
+            for nh in entry.nodes:
+                nh.shutdown()

@@ -10,8 +10,8 @@ names the limit, the value that broke it and how to raise it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
-from typing import Any, Mapping
+from dataclasses import dataclass, fields, replace
+from typing import Any, Mapping, Optional
 
 
 class LimitError(ValueError):
@@ -33,10 +33,15 @@ class Limits:
     name_length: int = 255  # characters of a model, link, joint or namespace name
 
     @classmethod
-    def from_mapping(cls, values: Mapping[str, Any], source: str) -> Limits:
-        """Limits with ``values`` over the defaults; unknown names and bad values raise."""
+    def from_mapping(cls, values: Mapping[str, Any], source: str,
+                     base: Optional[Limits] = None) -> Limits:
+        """Limits with ``values`` over ``base`` (or the defaults); unknown names and bad values
+        raise, naming ``source``."""
+        if not isinstance(values, Mapping):
+            raise LimitError('%s: limits must be a mapping of name: value, not %r'
+                             % (source, values))
         known = {f.name: f for f in fields(cls)}
-        out = cls()
+        out = replace(base) if base is not None else cls()
         for name, raw in values.items():
             if name not in known:
                 raise LimitError('%s: unknown limit %r; known: %s'

@@ -2,13 +2,20 @@
 import pybullet as p
 
 
+class RobotLoadError(ValueError):
+    """pybullet could not build the body; the message says what it reported."""
+
+
 class Robot:
     def __init__(self, client, urdf_path, position=(0, 0, 0), orientation=(0, 0, 0, 1),
                  fixed_base=False):
         self.client = client
         # Inertia from the file: pybullet would otherwise derive it from the collision mesh.
-        self.body = p.loadURDF(urdf_path, position, orientation, useFixedBase=fixed_base,
-                               flags=p.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+        try:
+            self.body = p.loadURDF(urdf_path, position, orientation, useFixedBase=fixed_base,
+                                   flags=p.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+        except p.error as exc:
+            raise RobotLoadError('pybullet could not build the robot (%s)' % exc)
         self.initial_pose = (tuple(position), tuple(orientation))
         self.joint_index = {}
         self.link_index = {p.getBodyInfo(self.body, physicsClientId=client)[0].decode(): -1}
@@ -21,9 +28,10 @@ class Robot:
                              physicsClientId=client)
         movable = [i for i in self.joint_index.values()
                    if p.getJointInfo(self.body, i, physicsClientId=client)[2] != p.JOINT_FIXED]
-        # Each joint's default velocity motor would hold it still: switch it off so effort acts.
-        p.setJointMotorControlArray(self.body, movable, p.VELOCITY_CONTROL,
-                                    forces=[0.0] * len(movable), physicsClientId=client)
+        if movable:
+            # Each joint's default velocity motor would hold it still: switch it off so effort acts.
+            p.setJointMotorControlArray(self.body, movable, p.VELOCITY_CONTROL,
+                                        forces=[0.0] * len(movable), physicsClientId=client)
         self.movable = movable
 
     def indices(self, joint_names):
@@ -31,10 +39,18 @@ class Robot:
 
     def read(self, indices):
         """``[(position, velocity), ...]`` of the given joints."""
-        return [s[:2] for s in p.getJointStates(self.body, indices, physicsClientId=self.client)]
+        return [s[:2] for s in self._joint_states(indices)]
+
+    def _joint_states(self, indices):
+        # pybullet answers None, not [], when asked for no joints (a body without joints).
+        if not indices:
+            return []
+        return p.getJointStates(self.body, indices, physicsClientId=self.client)
 
     def apply_efforts(self, indices, efforts):
         # A TORQUE_CONTROL command lasts one stepSimulation: call this before every step.
+        if not indices:
+            return
         p.setJointMotorControlArray(self.body, indices, p.TORQUE_CONTROL, forces=efforts,
                                     physicsClientId=self.client)
 
@@ -54,8 +70,7 @@ class Robot:
     def state(self):
         """Base pose and the positions of the movable joints: all a mirror needs to look alike."""
         pos, orn = p.getBasePositionAndOrientation(self.body, physicsClientId=self.client)
-        joints = p.getJointStates(self.body, self.movable, physicsClientId=self.client)
-        return pos, orn, [s[0] for s in joints]
+        return pos, orn, [s[0] for s in self._joint_states(self.movable)]
 
     def set_state(self, state):
         """Take on a ``state()`` of a robot loaded from the same URDF."""

@@ -9,6 +9,7 @@ import sys
 import threading
 import time
 
+import rosgraph.names
 import rospkg
 import rospy
 import rospy.impl.simtime
@@ -19,6 +20,8 @@ from std_srvs.srv import Empty
 from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
 
 from ..pacer import Pacer, RealTimeFactorMeter, wall_period
+from ..physics.limits import LimitError, Limits
+from ..physics.names import shown
 from ..physics.sdf_world import SdfError, WorldConfig, read_world
 from ..simulation import Simulation, SpawnError
 from .camera_plugin import GazeboRosCamera
@@ -46,8 +49,6 @@ class GazeboRosApi:
         self.paused = paused
         self._calls = collections.deque()
         self._find_package = PackageFinder()
-        self._cm_interfaces = {}
-        self._cameras = {}  # model name -> [GazeboRosCamera]
         self.clock_period_ns = int(1e9 / max(1e-3, float(rospy.get_param('~pub_clock_frequency', 100))))
         self._clock_pub = synchronous_publisher('/clock', Clock)
         self._own_clock = self._stop_listening_to_own_clock()
@@ -113,26 +114,30 @@ class GazeboRosApi:
 
     def spawn(self, name, xml, xyz, quat, namespace=''):
         """Spawn a URDF model with its plugins (controller manager, cameras). Sim thread only."""
-        model = self.sim.spawn_urdf(name, xml, xyz, quat, namespace, self._find_package,
-                                    self._make_controller_manager)
-        self._cameras[model.name] = [GazeboRosCamera(c) for c in model.cameras]
-        return model
+        if namespace and not rosgraph.names.is_legal_name(namespace):
+            raise SpawnError("cannot spawn '%s': robot_namespace %s is not a legal ROS name"
+                             % (name, shown(namespace)))
+        return self.sim.spawn_urdf(name, xml, xyz, quat, namespace, self._find_package,
+                                   attach=self._attach_plugins)
 
-    def _make_controller_manager(self, hw, namespace):
-        interface = ControllerManagerInterface(hw, namespace)
-        self._cm_interfaces[namespace] = interface
-        return interface.manager
+    @staticmethod
+    def _attach_plugins(model):
+        """The ROS side of a model's plugins; each goes into the model's record."""
+        if model.hw is not None:
+            if not rosgraph.names.is_legal_name(model.namespace):
+                raise SpawnError('controller manager namespace %s is not a legal ROS name'
+                                 % shown(model.namespace))
+            interface = ControllerManagerInterface(model.hw, model.namespace)
+            model.controller_manager = interface.manager
+            model.plugins.append(interface)
+        for camera in model.cameras:
+            model.plugins.append(GazeboRosCamera(camera))
 
     def _delete(self, req):
         try:
-            model = self.call_in_sim_thread(self.sim.delete_model, req.model_name)
+            self.call_in_sim_thread(self.sim.delete_model, req.model_name)
         except SpawnError as exc:
             return False, str(exc)
-        interface = self._cm_interfaces.pop(model.namespace, None)
-        if interface:
-            interface.shutdown()
-        for camera in self._cameras.pop(model.name, []):
-            camera.shutdown()
         return True, "DeleteModel: successfully deleted model '%s'" % req.model_name
 
     def _configure(self, req):
@@ -226,6 +231,12 @@ def start_world(args):
         rospy.logfatal(str(exc))
         sys.exit(1)
     config.lockstep = args.lockstep
+    try:
+        config.limits = Limits.from_mapping(rospy.get_param('~limits', {}),
+                                            rospy.resolve_name('~limits'), config.limits)
+    except LimitError as exc:
+        rospy.logfatal(str(exc))
+        sys.exit(1)
     for attr in ('real_time_factor', 'real_time_update_rate'):
         if getattr(args, attr) is not None:
             setattr(config, attr, getattr(args, attr))
