@@ -97,8 +97,8 @@ class Simulation:
             limits.check('models', len(self.models) + 1, "cannot spawn '%s'" % name)
             limits.check('description_bytes', len(urdf_xml.encode('utf-8', 'replace')),
                          "cannot spawn '%s': the robot description" % name)
-            description = parse_urdf(urdf_xml)
-            resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages)
+            description = parse_urdf(urdf_xml, limits)
+            resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages, limits)
             sensors = camera_sensors(description)
         except (UrdfError, LimitError) as exc:
             raise SpawnError("cannot spawn '%s': %s" % (name, exc))

@@ -1,6 +1,7 @@
 """physics/sdf_world.py: what a Gazebo world file gives the pybullet world."""
 import pytest
 
+from arm1.physics.limits import Limits
 from arm1.physics.sdf_world import SdfError, WorldConfig, parse_world, read_world
 from conftest import WORLD_FILE
 
@@ -105,3 +106,49 @@ def test_bad_numbers_name_the_element(body, culprit):
 def test_unreadable_file(tmp_path):
     with pytest.raises(SdfError, match='cannot read world file'):
         read_world(str(tmp_path / 'nope.world'))
+
+
+# ----------------------------------------------------------------------------- limits plugin
+def limits_plugin(body, filename='libarm1_limits.so'):
+    return '<plugin name="arm1_limits" filename="%s">%s</plugin>' % (filename, body)
+
+
+def test_limits_plugin_sets_the_worlds_limits_over_the_defaults():
+    cfg = parse_world(world(limits_plugin(
+        '<camera_pixels>100000000</camera_pixels><models> 5 </models>'
+        '<sensor_update_rate>2000.5</sensor_update_rate>')))
+    assert cfg.limits.camera_pixels == 100000000
+    assert cfg.limits.models == 5
+    assert cfg.limits.sensor_update_rate == 2000.5
+    assert cfg.limits.links_per_model == Limits().links_per_model
+
+
+def test_without_the_plugin_the_limits_are_the_defaults():
+    assert parse_world(world('')).limits == Limits()
+    assert read_world(WORLD_FILE).limits == Limits()
+    # another plugin's parameters are not limits
+    other = limits_plugin('<camera_pixels>1</camera_pixels>', 'libgazebo_ros_api_plugin.so')
+    assert parse_world(world(other)).limits == Limits()
+
+
+@pytest.mark.parametrize('body, words', [
+    ('<camera_pixels>many</camera_pixels>', ['camera_pixels', "'many'", 'not a number']),
+    ('<camera_pixels>-1</camera_pixels>', ['camera_pixels', 'positive']),
+    ('<models>inf</models>', ['models', 'positive']),
+    ('<camera_pxels>1</camera_pxels>', ['unknown limit', 'camera_pxels', 'camera_pixels']),
+    ('<models>1</models><models>2</models>', ['models', 'given twice']),
+])
+def test_bad_limits_name_the_file_and_the_limit(body, words):
+    with pytest.raises(SdfError) as exc:
+        parse_world(world(limits_plugin(body)), 'mine.world')
+    assert 'mine.world' in str(exc.value)
+    for w in words:
+        assert w in str(exc.value)
+
+
+def test_world_file_with_a_dtd_is_refused():
+    doc = ('<?xml version="1.0"?><!DOCTYPE sdf [<!ENTITY a "aaaaaaaaaa">'
+           '<!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">]>' + world('<gravity>&b;</gravity>'))
+    with pytest.raises(SdfError) as exc:
+        parse_world(doc, 'laughs.world')
+    assert 'laughs.world' in str(exc.value) and 'DOCTYPE' in str(exc.value)

@@ -5,6 +5,8 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE
+from arm1.physics.limits import LimitError, Limits
+from arm1.physics.stl import write_binary_stl
 from arm1.physics.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
 from conftest import MIXED_URDF, REPO_ROOT, box_link, control_plugin, transmission
 
@@ -205,3 +207,154 @@ def test_arm1_meshes_all_resolve(arm1_urdf, find_package):
     assert {os.path.join(REPO_ROOT, 'meshes', n + '.STL')
             for n in ('base_link', 'link1', 'link2', 'link3', 'link4')} <= files
     assert all(os.path.isabs(f) and os.path.isfile(f) for f in files)
+
+
+# ----------------------------------------------------------------------------- limits
+def chain(links):
+    """A robot of ``links`` box links joined in a chain by fixed joints."""
+    body = ''.join('<link name="l%d"/>' % i for i in range(links))
+    body += ''.join('<joint name="j%d" type="fixed"><parent link="l%d"/><child link="l%d"/>'
+                    '</joint>' % (i, i, i + 1) for i in range(links - 1))
+    return robot(body, 'chain')
+
+
+def test_links_over_the_limit_are_refused_naming_limit_value_and_parameter():
+    parse_urdf(chain(10), Limits(links_per_model=10))
+    with pytest.raises(LimitError) as exc:
+        parse_urdf(chain(11), Limits(links_per_model=10))
+    msg = str(exc.value)
+    assert "robot 'chain'" in msg and 'links per model is 11' in msg
+    assert 'limit of 10' in msg and '~limits/links_per_model' in msg
+    assert isinstance(exc.value, UrdfError)  # callers catching UrdfError see it too
+
+
+def test_joints_over_the_limit_are_refused():
+    with pytest.raises(LimitError, match='joints per model is 10, over the limit of 9'):
+        parse_urdf(chain(11), Limits(joints_per_model=9))
+
+
+def test_long_link_and_joint_names_are_refused_shortened():
+    for kind, body in (('link', box_link('a' * 300)),
+                       ('joint', TWO_LINKS.replace('name="j"', 'name="%s"' % ('j' * 300)))):
+        if kind == 'link':
+            body += box_link('b') + '<joint name="j" type="fixed"><parent link="%s"/>' \
+                '<child link="b"/></joint>' % ('a' * 300)
+        with pytest.raises(LimitError) as exc:
+            parse_urdf(robot(body))
+        msg = str(exc.value)
+        assert msg.startswith('%s name' % kind) and 'name length is 300' in msg
+        assert '~limits/name_length' in msg and len(msg) < 300
+
+
+def test_link_without_a_name_is_refused():
+    with pytest.raises(UrdfError, match='a <link> has no name'):
+        parse_urdf(robot('<link/>'))
+
+
+def test_oversized_description_is_refused_before_parsing():
+    xml = robot(TWO_LINKS)
+    parse_urdf(xml, Limits(description_bytes=len(xml)))
+    with pytest.raises(LimitError) as exc:
+        parse_urdf(xml + ' ', Limits(description_bytes=len(xml)))
+    assert 'robot description: description bytes is %d' % (len(xml) + 1) in str(exc.value)
+
+
+def test_arm1_fits_the_default_limits(arm1_urdf, find_package):
+    parse_urdf(arm1_urdf, Limits())
+    resolve_mesh_uris(arm1_urdf, find_package, Limits())
+
+
+# ----------------------------------------------------------------------------- mesh guards
+@pytest.fixture
+def package(tmp_path):
+    """A package 'pkg' in tmp_path/pkg with meshes/m.stl (12 triangles); secret.stl outside."""
+    pkg = tmp_path / 'pkg'
+    (pkg / 'meshes').mkdir(parents=True)
+    cube = [[(0, 0, 0), (1, 0, 0), (0, 1, 0)]] * 12
+    write_binary_stl(str(pkg / 'meshes' / 'm.stl'), cube)
+    write_binary_stl(str(tmp_path / 'secret.stl'), cube)
+
+    def find(name):
+        if name == 'pkg':
+            return str(pkg)
+        raise LookupError(name)
+    return pkg, find
+
+
+@pytest.mark.parametrize('uri', [
+    'package://pkg/../secret.stl',
+    'package://pkg/meshes/../../secret.stl',
+    'package://pkg//etc/secret.stl',  # an absolute part would replace the package directory
+])
+def test_package_uri_that_climbs_out_is_refused(package, uri):
+    pkg, find = package
+    with pytest.raises(UrdfError) as exc:
+        resolve_mesh_uris(mesh_robot(uri, 'hand'), find)
+    msg = str(exc.value)
+    assert "'hand'" in msg and uri in msg and "leaves package 'pkg'" in msg
+
+
+def test_package_uri_with_dotdot_inside_the_package_resolves(package):
+    pkg, find = package
+    out = resolve_mesh_uris(mesh_robot('package://pkg/meshes/../meshes/m.stl'), find)
+    assert {m.get('filename') for m in ET.fromstring(out).iter('mesh')} == {
+        str(pkg / 'meshes' / 'm.stl')}
+
+
+def test_symlink_the_package_holds_is_followed(package, tmp_path):
+    # devel-space packages are trees of symlinks into the source: what the package holds counts
+    pkg, find = package
+    os.symlink(str(tmp_path / 'secret.stl'), str(pkg / 'meshes' / 'linked.stl'))
+    out = resolve_mesh_uris(mesh_robot('package://pkg/meshes/linked.stl'), find)
+    assert {m.get('filename') for m in ET.fromstring(out).iter('mesh')} == {
+        str(pkg / 'meshes' / 'linked.stl')}
+
+
+@pytest.mark.parametrize('name', ['passwd', 'm.png', 'm.stl.txt'])
+def test_only_mesh_extensions_are_read(package, name):
+    pkg, find = package
+    (pkg / name).write_text('root:x:0:0:secret\n')
+    with pytest.raises(UrdfError) as exc:
+        resolve_mesh_uris(mesh_robot('package://pkg/' + name), find)
+    assert 'only .stl, .obj, .dae meshes' in str(exc.value)
+    assert 'secret' not in str(exc.value)
+
+
+def test_mesh_that_is_not_a_regular_file_is_refused(package):
+    pkg, find = package
+    os.mkfifo(str(pkg / 'pipe.stl'))  # opening it would block the world
+    (pkg / 'dir.obj').mkdir()
+    for name in ('pipe.stl', 'dir.obj'):
+        with pytest.raises(UrdfError, match='is not a regular file'):
+            resolve_mesh_uris(mesh_robot('package://pkg/' + name), find)
+
+
+def test_unsupported_uri_scheme_is_refused(find_package):
+    with pytest.raises(UrdfError, match="scheme 'http://' is not supported"):
+        resolve_mesh_uris(mesh_robot('http://example.com/m.stl'), find_package)
+
+
+def test_mesh_over_the_byte_limit_is_refused(package):
+    pkg, find = package
+    size = os.path.getsize(str(pkg / 'meshes' / 'm.stl'))
+    with pytest.raises(LimitError) as exc:
+        resolve_mesh_uris(mesh_robot('package://pkg/meshes/m.stl'), find,
+                          Limits(mesh_bytes=size - 1))
+    assert 'mesh bytes is %d, over the limit of %d' % (size, size - 1) in str(exc.value)
+    assert 'package://pkg/meshes/m.stl' in str(exc.value)
+
+
+def test_mesh_over_the_triangle_limit_is_refused(package):
+    pkg, find = package
+    resolve_mesh_uris(mesh_robot('package://pkg/meshes/m.stl'), find, Limits(mesh_triangles=12))
+    with pytest.raises(LimitError, match='mesh triangles is 12, over the limit of 11'):
+        resolve_mesh_uris(mesh_robot('package://pkg/meshes/m.stl'), find,
+                          Limits(mesh_triangles=11))
+
+
+def test_broken_mesh_is_refused_without_its_contents(package):
+    pkg, find = package
+    (pkg / 'broken.stl').write_text('root:x:0:0:secret-line\n' * 10)
+    with pytest.raises(UrdfError) as exc:
+        resolve_mesh_uris(mesh_robot('package://pkg/broken.stl'), find)
+    assert 'neither a binary STL' in str(exc.value) and 'secret' not in str(exc.value)

@@ -1,10 +1,20 @@
-"""Reads a Gazebo SDF world: physics settings, gravity and the models a pybullet world can build."""
+"""Reads a Gazebo SDF world: physics settings, gravity and the models a pybullet world can build.
+
+Parsed with defusedxml (no DTD, hence no entity expansion; see safe_xml). The
+world's limits on spawned content come from the plugin LIMITS_PLUGIN.
+"""
+from __future__ import annotations
+
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
+from typing import Dict
 
-from .limits import Limits
+from . import safe_xml
+from .limits import LimitError, Limits
 
 SHAPES = ('plane', 'box', 'sphere', 'cylinder')
+# <plugin name="arm1_limits" filename="libarm1_limits.so"><camera_pixels>...</...></plugin>
+LIMITS_PLUGIN = 'libarm1_limits.so'
 
 
 class SdfError(ValueError):
@@ -90,15 +100,33 @@ def _model(model):
     return StaticModel(name, _pose(model, 'model %s' % name), shapes), None
 
 
-def parse_world(xml_text, source='world'):
+def _limits(world: ET.Element, source: str) -> Limits:
+    """Limits of the world's arm1_limits plugin over the defaults (the defaults without one)."""
+    plugins = [p for p in world.findall('plugin') if p.get('filename') == LIMITS_PLUGIN]
+    if len(plugins) > 1:
+        raise SdfError('%s: more than one <plugin filename="%s">' % (source, LIMITS_PLUGIN))
+    values: Dict[str, str] = {}
+    for plugin in plugins:
+        for child in plugin:
+            if child.tag in values:
+                raise SdfError('%s: limit %s is given twice' % (source, child.tag))
+            values[child.tag] = (child.text or '').strip()
     try:
-        root = ET.fromstring(xml_text)
-    except ET.ParseError as exc:
-        raise SdfError('%s is not well-formed XML: %s' % (source, exc))
+        return Limits.from_mapping(values, '%s <plugin %s>' % (source, LIMITS_PLUGIN))
+    except LimitError as exc:
+        raise SdfError(str(exc)) from None
+
+
+def parse_world(xml_text, source='world'):
+    # The world file is the user's own, so no size limits; but no DTD either (no entities).
+    try:
+        root = safe_xml.parse(xml_text, source)
+    except safe_xml.XmlRefused as exc:
+        raise SdfError(str(exc)) from None
     world = root.find('world') if root.tag == 'sdf' else None
     if world is None:
         raise SdfError('%s has no <sdf><world>' % source)
-    config = WorldConfig()
+    config = WorldConfig(limits=_limits(world, source))
     physics = world.find('physics')
     if physics is not None:
         for tag in ('max_step_size', 'real_time_factor', 'real_time_update_rate'):

@@ -1,9 +1,22 @@
-"""Reads what the simulator needs from a URDF: joints, limits, transmissions, Gazebo tags."""
+"""Reads what the simulator needs from a URDF: joints, limits, transmissions, Gazebo tags.
+
+A robot description may come from any ROS client, so it is parsed as hostile:
+defusedxml with no DTD, a bounded size and tree (safe_xml), the world's Limits
+on links, joints and names, and mesh URIs that stay where they point.
+"""
+from __future__ import annotations
+
 import os
+import stat
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
+from typing import Callable, Dict, Optional, Union
 
 from ..control.hardware_interface import JointLimits, canonical_interface
+from . import safe_xml
+from .limits import LimitError, Limits
+from .mesh_limits import MESH_EXTENSIONS, MeshError, count_triangles, mesh_kind
+from .names import shown
 
 ACTUATED_TYPES = ('revolute', 'continuous', 'prismatic')
 CONTROL_PLUGIN = 'libgazebo_ros_control.so'
@@ -11,6 +24,15 @@ CONTROL_PLUGIN = 'libgazebo_ros_control.so'
 
 class UrdfError(ValueError):
     """The robot description is unusable; the message names the culprit."""
+
+
+class UrdfLimitError(UrdfError, LimitError):
+    """The description exceeds one of the world's Limits (caught as either kind)."""
+
+
+# Elements a description may hold for each link and joint the limits allow: a link with
+# visual, collision, inertial and Gazebo tags has about 20, so 100 is room to spare.
+ELEMENTS_PER_PART = 100
 
 
 @dataclass
@@ -68,19 +90,70 @@ def _float(text, what):
         raise UrdfError('%s: %r is not a number' % (what, text))
 
 
-def parse_urdf(xml_text):
+def _check(limits: Limits, name: str, value: float, what: str) -> None:
     try:
-        root = ET.fromstring(xml_text)
-    except ET.ParseError as exc:
-        raise UrdfError('robot description is not well-formed XML: %s' % exc)
+        limits.check(name, value, what)
+    except LimitError as exc:
+        raise UrdfLimitError(str(exc)) from None
+
+
+def parse_description(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> ET.Element:
+    """The root element of a robot description from a request, parsed as hostile input.
+
+    Refused before parsing when over ``limits.description_bytes``; parsed with no
+    DTD (so no entity expansion or external entity) and at most
+    ELEMENTS_PER_PART elements for each link and joint the limits allow.
+    """
+    limits = limits or Limits()
+    if isinstance(xml_text, bytes):
+        size = len(xml_text)
+    else:
+        size = len(xml_text.encode('utf-8', 'surrogatepass'))
+    _check(limits, 'description_bytes', size, 'robot description')
+    budget = int(ELEMENTS_PER_PART * (limits.links_per_model + limits.joints_per_model))
+    try:
+        return safe_xml.parse(xml_text, 'robot description', budget)
+    except safe_xml.TooManyElements as exc:
+        raise UrdfLimitError(
+            '%s: %d for each link and joint the limits allow (raise them with the world node '
+            'parameters ~limits/links_per_model and ~limits/joints_per_model or the world file '
+            'plugin arm1_limits)' % (exc, ELEMENTS_PER_PART)) from None
+    except safe_xml.XmlRefused as exc:
+        raise UrdfError(str(exc)) from None
+
+
+def _named(elements: list, kind: str, limits: Limits) -> list:
+    """The names of ``elements``, each present and within limits.name_length."""
+    names = []
+    for e in elements:
+        name = e.get('name')
+        if not name:
+            raise UrdfError('a <%s> has no name' % kind)
+        _check(limits, 'name_length', len(name), '%s name %s' % (kind, shown(name)))
+        names.append(name)
+    return names
+
+
+def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> RobotModel:
+    """What the simulator needs of a URDF; ``limits`` default to Limits()'s defaults.
+
+    Raises UrdfError naming the culprit; UrdfLimitError (also a LimitError) when
+    the description exceeds a limit.
+    """
+    limits = limits or Limits()
+    root = parse_description(xml_text, limits)
     if root.tag != 'robot':
         raise UrdfError('robot description has root <%s>, expected <robot>' % root.tag)
-    links = [l.get('name') for l in root.findall('link')]
+    robot = 'robot %s' % shown(root.get('name') or '')
+    link_elements, joint_elements = root.findall('link'), root.findall('joint')
+    _check(limits, 'links_per_model', len(link_elements), robot)
+    _check(limits, 'joints_per_model', len(joint_elements), robot)
+    links = _named(link_elements, 'link', limits)
     if not links:
         raise UrdfError("robot '%s' has no <link>" % root.get('name'))
     joints = {}
-    for j in root.findall('joint'):
-        name, jtype = j.get('name'), j.get('type')
+    for j, name in zip(joint_elements, _named(joint_elements, 'joint', limits)):
+        jtype = j.get('type')
         parent, child = j.find('parent'), j.find('child')
         if parent is None or child is None:
             raise UrdfError("joint '%s' lacks <parent> or <child>" % name)
@@ -126,29 +199,82 @@ def parse_urdf(xml_text):
     return model
 
 
-def resolve_mesh_uris(xml_text, find_package):
-    """Rewrite ``package://`` and ``file://`` mesh URIs to absolute paths.
+def resolve_mesh_uris(xml_text: Union[str, bytes], find_package: Callable[[str], str],
+                      limits: Optional[Limits] = None) -> str:
+    """The description with every link's mesh URI rewritten to an absolute path, each checked.
 
     ``find_package(name)`` returns a package's directory or raises LookupError.
-    A mesh that does not exist raises UrdfError naming its link and path.
+    ``package://pkg/rel`` must stay inside pkg's directory once ``..`` is
+    collapsed (symlinks the package itself holds are followed: installed and
+    devel-space packages are made of them). ``file://`` URIs and paths are
+    taken as they are, as Gazebo does. Each mesh must be a regular .stl, .obj or
+    .dae file within ``limits.mesh_bytes`` and ``limits.mesh_triangles``. Errors
+    name the link, the URI and the path, never the file's contents.
     """
-    root = ET.fromstring(xml_text)
+    limits = limits or Limits()
+    root = parse_description(xml_text, limits)
+    checked: Dict[str, str] = {}  # uri -> path, each mesh checked once per call
     for link in root.findall('link'):
         for mesh in link.iter('mesh'):
             uri = mesh.get('filename', '')
-            if uri.startswith('package://'):
-                pkg, _, rel = uri[len('package://'):].partition('/')
-                try:
-                    path = os.path.join(find_package(pkg), rel)
-                except LookupError:
-                    raise UrdfError("link '%s': mesh %s: package '%s' not found on the ROS "
-                                    "package path" % (link.get('name'), uri, pkg))
-            elif uri.startswith('file://'):
-                path = uri[len('file://'):]
-            else:
-                path = uri
-            if not os.path.isfile(path):
-                raise UrdfError("link '%s': mesh file not found: %s (from %s)"
-                                % (link.get('name'), path, uri))
-            mesh.set('filename', path)
+            if uri not in checked:
+                checked[uri] = _checked_mesh(uri, link.get('name'), find_package, limits)
+            mesh.set('filename', checked[uri])
     return ET.tostring(root, encoding='unicode')
+
+
+def _mesh_path(uri: str, where: str, find_package: Callable[[str], str]) -> str:
+    """The file ``uri`` names, package:// kept inside its package."""
+    scheme, sep, rest = uri.partition('://')
+    if not sep:
+        path = uri
+    elif scheme == 'file':
+        path = rest
+    elif scheme == 'package':
+        pkg, _, rel = rest.partition('/')
+        if not pkg:
+            raise UrdfError('%s names no package' % where)
+        try:
+            pkg_dir = os.path.abspath(find_package(pkg))  # abspath also collapses '..'
+        except LookupError:
+            raise UrdfError("%s: package '%s' not found on the ROS package path"
+                            % (where, pkg)) from None
+        path = os.path.normpath(os.path.join(pkg_dir, rel))
+        if os.path.commonpath([pkg_dir, path]) != pkg_dir:
+            raise UrdfError("%s leaves package '%s': a package:// URI must name a file inside "
+                            "its package's directory" % (where, pkg))
+        return path
+    else:
+        raise UrdfError("%s: URI scheme '%s://' is not supported (package://, file:// or a path)"
+                        % (where, shown(scheme, 30)[1:-1]))
+    # as Gazebo: a path is opened as written, a relative one from the world's directory
+    return path if os.path.isabs(path) else os.path.join(os.getcwd(), path)
+
+
+def _checked_mesh(uri: str, link: str, find_package: Callable[[str], str],
+                  limits: Limits) -> str:
+    """The path of ``uri``'s mesh once it passed every check; UrdfError otherwise."""
+    where = 'link %s: mesh %s' % (shown(link or ''), shown(uri, 200))
+    path = _mesh_path(uri, where, find_package)
+    kind = mesh_kind(path)
+    if kind is None:
+        raise UrdfError('%s: only %s meshes (any case) are loaded'
+                        % (where, ', '.join(MESH_EXTENSIONS)))
+    try:
+        st = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        raise UrdfError("link '%s': mesh file not found: %s (from %s)"
+                        % (link, path, shown(uri, 200))) from None
+    except OSError as exc:
+        raise UrdfError('%s: %s cannot be read: %s' % (where, path, exc.strerror)) from None
+    if not stat.S_ISREG(st.st_mode):  # a fifo or device would block or never end
+        raise UrdfError('%s: %s is not a regular file' % (where, path))
+    _check(limits, 'mesh_bytes', st.st_size, where)
+    try:
+        triangles = count_triangles(path, stop_above=limits.mesh_triangles)
+    except MeshError as exc:
+        raise UrdfError('%s: %s' % (where, exc)) from None
+    if triangles > limits.mesh_triangles and kind != '.stl':
+        where += ' (counted until past the limit)'  # OBJ and COLLADA stop reading there
+    _check(limits, 'mesh_triangles', triangles, where)
+    return path
