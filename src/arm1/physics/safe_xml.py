@@ -75,3 +75,5 @@ def parse(text: Union[str, bytes], what: str, max_elements: Optional[int] = None
         raise XmlRefused('%s refers to an external XML entity: refused' % what) from None
     except ET.ParseError as exc:
         raise XmlRefused('%s is not well-formed XML: %s' % (what, exc)) from None
+    except UnicodeError:  # a str with lone surrogates cannot be handed to expat
+        raise XmlRefused('%s is not valid Unicode text' % what) from None
