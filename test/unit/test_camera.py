@@ -1,6 +1,9 @@
 """physics/camera.py: camera sensors from the URDF, their geometry, scheduling and rendering."""
 import math
+import os
+import signal
 import struct
+import time
 import zlib
 
 import numpy as np
@@ -8,9 +11,12 @@ import pybullet as p
 import pytest
 
 from arm1.image import is_uniform, png
-from arm1.physics.camera import (Camera, CameraSensor, SensorManager, camera_sensors, encode,
-                                 intrinsics, render, view_matrix)
-from arm1.physics.sdf_world import read_world
+from arm1.pacer import Pacer
+from arm1.physics import sensor_manager
+from arm1.physics.camera import (Camera, CameraSensor, RenderError, SensorManager,
+                                 camera_sensors, encode, intrinsics, render, view_matrix)
+from arm1.physics.limits import LimitError, Limits
+from arm1.physics.sdf_world import WorldConfig, read_world
 from arm1.physics.urdf_model import UrdfError, parse_urdf
 from arm1.simulation import Simulation
 from conftest import WORLD_FILE, box_link
@@ -115,66 +121,97 @@ def test_updates_at_30_hz_in_sim_time():
     assert cam.due(STEP_NS) and not cam.due(2 * STEP_NS)
 
 
-class FakeRenderer:
-    """Renders nothing until asked for a reply; then the oldest request's frame."""
+class FakeClock:
+    """Sim time as the fake render processes see it (a frame takes ``render_ns`` of it)."""
+    now = 0
 
-    def __init__(self, config, robots):
+
+class FakeRenderer:
+    """A render process that finishes a frame ``render_ns`` after it was asked (None: never on
+    its own). receive() before a frame is ready counts as a wait of the world."""
+
+    def __init__(self, config, robots, clock=None, render_ns=None):
         self.robots = dict(robots)
         self.requests = []  # (camera name, states)
+        self.done_at = []  # per request out: clock time it is ready
         self.replies = 0
+        self.waited = 0
         self.in_flight = 0
+        self.clock, self.render_ns = clock, render_ns
+        self.dead = self.closed = False
 
     def send(self, message):
+        if self.dead:
+            raise RenderError('fake render process is gone')
         if message[0] == 'add':
             self.robots[message[1]] = message[2]
         elif message[0] == 'remove':
             del self.robots[message[1]]
         else:
             self.requests.append((message[2].name, message[3]))
+            self.done_at.append(None if self.render_ns is None
+                                else self.clock.now + self.render_ns)
 
     def ready(self):
-        return False
+        return self.dead or (bool(self.done_at) and self.done_at[0] is not None
+                             and self.done_at[0] <= self.clock.now)
 
-    def receive(self):
+    def receive(self, timeout=None):
+        if self.dead:
+            raise RenderError('fake render process is gone')
+        if not self.ready():
+            self.waited += 1  # a real one would block here
+        self.done_at.pop(0)
         self.replies += 1
         return 'frame', b'frame %d' % self.replies
 
-    def close(self):
-        pass
+    def close(self, kill=False):
+        self.closed = True
 
 
-def manager_with_fakes(processes):
-    made = []
+def manager_with_fakes(processes, lockstep=False, render_ns=None, limits=None, **kwargs):
+    made, clock = [], FakeClock()
 
     def factory(config, robots):
-        made.append(FakeRenderer(config, robots))
+        made.append(FakeRenderer(config, robots, clock, render_ns))
         return made[-1]
-    return SensorManager(None, processes, factory), made
+    config = WorldConfig(lockstep=lockstep, limits=limits or Limits())
+    return SensorManager(config, processes, factory, **kwargs), made, clock
 
 
-def test_nothing_is_rendered_without_a_subscriber():
-    manager, made = manager_with_fakes(2)
+def watched(cam):
+    """Subscribe to a camera: returns the list of (stamp, data) it will hand over."""
+    frames = []
+    cam.wants_image, cam.on_image = (lambda: True), (lambda t, d: frames.append((t, d)))
+    return frames
+
+
+def run(manager, clock, start_ns, end_ns, states=None):
+    for t in range(start_ns, end_ns, STEP_NS):
+        clock.now = t
+        manager.update(t, states or (lambda: {'m': t}))
+
+
+@pytest.mark.parametrize('lockstep', [False, True])
+def test_nothing_is_rendered_without_a_subscriber(lockstep):
+    manager, made, clock = manager_with_fakes(2, lockstep)
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
     infos = []
     cam.on_info = infos.append
-    for t in range(STEP_NS, 10 ** 9, STEP_NS):
-        manager.update(t, lambda: {})
+    run(manager, clock, STEP_NS, 10 ** 9)
     assert made == [] and infos == []  # no render process was even started
     cam.wants_info = lambda: True  # camera_info alone: published without rendering
-    for t in range(10 ** 9, 2 * 10 ** 9, STEP_NS):
-        manager.update(t, lambda: {})
+    run(manager, clock, 10 ** 9, 2 * 10 ** 9)
     assert made == [] and len(infos) == 30
 
 
 @pytest.mark.parametrize('processes', [1, 2])
 def test_lockstep_every_update_instant_gets_its_frame_in_order(processes):
-    manager, made = manager_with_fakes(processes)
+    manager, made, clock = manager_with_fakes(processes, lockstep=True)
     manager.add_robot('other', ('other.urdf',))
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
-    frames = []
-    cam.wants_image, cam.on_image = (lambda: True), (lambda t, d: frames.append(t))
-    for t in range(STEP_NS, 10 ** 9, STEP_NS):
-        manager.update(t, lambda: {'m': t})  # the robots' state at the update instant
+    frames = watched(cam)
+    run(manager, clock, STEP_NS, 10 ** 9)  # the robots' state at each step is its time
     assert len(made) == processes
     assert all(set(r.robots) == {'other', 'm'} for r in made)  # each mirrors every robot
     asked = sorted(states['m'] for r in made for _, states in r.requests)
@@ -182,22 +219,179 @@ def test_lockstep_every_update_instant_gets_its_frame_in_order(processes):
     assert set(np.diff(asked)) <= {33 * STEP_NS, 34 * STEP_NS}
     # the renderers never finished on their own: the world waited, so that no more than one
     # frame per render process was ever out; frames came in order, each with its instant
-    assert frames == asked[:30 - processes]
+    assert [t for t, _ in frames] == asked[:30 - processes]
+    assert sum(r.waited for r in made) == 30 - processes
     if processes == 2:  # the requests alternate between the two
         assert [len(r.requests) for r in made] == [15, 15]
     manager.remove_robot('m')
     assert manager.cameras == [] and all(set(r.robots) == {'other'} for r in made)
 
 
-def test_rate_zero_renders_as_fast_as_the_render_processes_go():
-    manager, made = manager_with_fakes(2)
+def test_default_timing_never_waits_and_the_image_rate_drops():
+    # one render process, 100 ms of rendering per frame, a 30 Hz camera
+    manager, made, clock = manager_with_fakes(1, render_ns=100 * STEP_NS)
+    [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
+    frames = watched(cam)
+    run(manager, clock, STEP_NS, 3 * 10 ** 9)
+    [r] = made
+    assert r.waited == 0, 'the physics waited for a render process'
+    # 10 frames a second instead of 30; the instants in between were skipped
+    assert 28 <= len(frames) <= 30, len(frames)
+    assert cam.skipped >= 40 and cam.frames == len(frames)
+
+
+def test_a_late_frame_shows_the_newest_state_stamped_with_its_time():
+    # 50 ms per frame: the renderer frees up between two 30 Hz instants
+    manager, made, clock = manager_with_fakes(1, render_ns=50 * STEP_NS)
+    [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
+    frames = watched(cam)
+    run(manager, clock, STEP_NS, 10 ** 9)
+    stamps = [t for t, _ in frames]
+    # asked for as soon as the renderer was free, with the state of that step, stamped so
+    assert stamps[:5] == [STEP_NS + k * 50 * STEP_NS for k in range(5)]
+    assert [states['m'] for _, states in made[0].requests][:5] == stamps[:5]
+    assert stamps[1] % (10 ** 9 // 30) not in (0, STEP_NS)  # not an update instant: late
+    assert made[0].waited == 0
+
+
+def test_two_render_processes_keep_every_instant_without_waiting():
+    manager, made, clock = manager_with_fakes(2, render_ns=50 * STEP_NS)
+    [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
+    frames = watched(cam)
+    run(manager, clock, STEP_NS, 2 * 10 ** 9)
+    stamps = [t for t, _ in frames]
+    assert set(np.diff(stamps)) <= {33 * STEP_NS, 34 * STEP_NS}  # every instant, in order
+    assert len(stamps) >= 58 and cam.skipped == 0
+    assert sum(r.waited for r in made) == 0
+
+
+@pytest.mark.parametrize('lockstep', [False, True])
+def test_rate_zero_renders_as_fast_as_the_render_processes_go(lockstep):
+    manager, made, clock = manager_with_fakes(2, lockstep)
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=0)])
-    cam.wants_image = lambda: True
-    for t in range(STEP_NS, 100 * STEP_NS, STEP_NS):
-        manager.update(t, lambda: {})
+    watched(cam)
+    run(manager, clock, STEP_NS, 100 * STEP_NS)
     # both busy from the first steps on, and the world never waited for them
     assert [len(r.requests) for r in made] == [1, 1]
     assert sum(r.replies for r in made) == 0
+    # and with 20 ms frames, each keeps going
+    for r in made:
+        r.render_ns, r.done_at = 20 * STEP_NS, [clock.now]
+    run(manager, clock, 100 * STEP_NS, 300 * STEP_NS)
+    assert sum(r.waited for r in made) == 0
+    assert cam.frames >= 15
+
+
+def test_a_deleted_models_camera_gets_no_late_frame_and_its_name_can_come_back():
+    manager, made, clock = manager_with_fakes(2, render_ns=50 * STEP_NS)
+    [old] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
+    old_frames = watched(old)
+    run(manager, clock, STEP_NS, 40 * STEP_NS)
+    assert old.in_flight == 2 and old_frames == []  # two frames out
+    manager.remove_robot('m')
+    assert all('m' not in r.robots for r in made)  # gone from the render mirrors
+    [new] = manager.add_robot('m', ('m2.urdf',), [CameraSensor('c', 'l', update_rate=30)])
+    new_frames = watched(new)
+    run(manager, clock, 40 * STEP_NS, 10 ** 9)
+    assert old_frames == [] and old.frames == 0
+    assert len(new_frames) >= 25 and all(r.robots['m'] == ('m2.urdf',) for r in made)
+
+
+# ---------------------------------------------------------------------------- limits
+BIG = ('<sensor type="camera" name="big"><update_rate>%s</update_rate><camera><image>'
+       '<width>%d</width><height>%d</height></image></camera>'
+       '<plugin filename="libgazebo_ros_camera.so"/></sensor>')
+
+
+def test_a_camera_over_the_pixel_limit_is_refused_naming_limit_value_and_parameter():
+    description = parse_urdf(robot_with(BIG % (30, 6000, 6000)))
+    with pytest.raises(LimitError) as err:
+        camera_sensors(description, Limits())
+    msg = str(err.value)
+    assert "sensor 'big' on link 'b' (6000x6000)" in msg
+    assert 'camera pixels is 36000000, over the limit of 16777216' in msg
+    assert '~limits/camera_pixels' in msg
+    [s] = camera_sensors(description, Limits(camera_pixels=36_000_000))  # raised: fine
+    assert (s.width, s.height, s.update_rate) == (6000, 6000, 30)
+
+
+def test_a_camera_over_the_rate_limit_is_refused():
+    description = parse_urdf(robot_with(BIG % (5000, 64, 48)))
+    with pytest.raises(LimitError, match=r"sensor 'big'.*sensor update rate is 5000, over the "
+                                         r"limit of 1000 .*~limits/sensor_update_rate"):
+        camera_sensors(description, Limits())
+    assert camera_sensors(description, Limits(sensor_update_rate=5000))[0].update_rate == 5000
+
+
+@pytest.mark.parametrize('rate', ['nan', 'inf', '-1'])
+def test_a_rate_that_is_no_rate_is_refused(rate):
+    with pytest.raises(UrdfError, match="sensor 'big'.*update_rate"):
+        sensors_of(robot_with(BIG % (rate, 64, 48)))
+
+
+def test_the_worlds_render_budget_is_checked_before_anything_changes():
+    limits = Limits(render_pixels_per_second=150e6)
+    manager, made, clock = manager_with_fakes(1, limits=limits)
+    [arm_cam] = manager.add_robot('arm', ('arm.urdf',), [CameraSensor('eye', 'l', 30, width=640,
+                                                                      height=480)])
+    watched(arm_cam)
+    run(manager, clock, STEP_NS, 3 * STEP_NS)  # a render process runs and mirrors the arm
+    # 2000 x 2000 at 30 Hz = 120 Mpx/s; with the arm's 9.2 Mpx/s, under 150
+    manager.add_robot('m1', ('m1.urdf',), [CameraSensor('c1', 'l', 30, width=2000, height=2000)])
+    before = (list(manager.cameras), dict(made[0].robots))
+    with pytest.raises(LimitError) as err:  # rate 0 counts as 60 Hz: 1 Mpx x 60 = 60 Mpx/s more
+        manager.add_robot('m2', ('m2.urdf',), [CameraSensor('c2', 'l', 0, width=1000,
+                                                            height=1000)])
+    msg = str(err.value)
+    assert "camera 'c2' (1000x1000 at as fast as possible) with the world's 2 other" in msg
+    assert 'render pixels per second is 189216000, over the limit of 150000000' in msg
+    assert '~limits/render_pixels_per_second' in msg
+    assert (list(manager.cameras), dict(made[0].robots)) == before  # nothing changed
+    manager.remove_robot('m1')  # frees its share
+    manager.add_robot('m2', ('m2.urdf',), [CameraSensor('c2', 'l', 0, width=1000, height=1000)])
+
+
+# --------------------------------------------------------------- failing render processes
+def test_a_dead_render_process_is_replaced_and_the_world_goes_on(caplog):
+    manager, made, clock = manager_with_fakes(2, render_ns=20 * STEP_NS, restart_delay=0.0)
+    [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('eye', 'l', update_rate=30)])
+    watched(cam)
+    run(manager, clock, STEP_NS, 200 * STEP_NS)
+    before = cam.frames
+    made[0].dead = True
+    run(manager, clock, 200 * STEP_NS, 10 ** 9)
+    assert made[0].closed and made[0] not in manager.renderers
+    assert len(made) == 3 and len(manager.renderers) == 2 and manager.restarts == 1
+    assert cam.frames - before >= 20 and not manager.failed
+    assert any("'eye'" in r.message and 'gone' in r.message for r in caplog.records
+               if r.levelname == 'ERROR')
+
+
+def test_a_hung_render_process_is_replaced(monkeypatch):
+    monkeypatch.setattr(sensor_manager, 'render_timeout', lambda sensor: 0.05)
+    manager, made, clock = manager_with_fakes(1, render_ns=None, restart_delay=0.0)
+    [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('eye', 'l', update_rate=30)])
+    watched(cam)
+    run(manager, clock, STEP_NS, 10 * STEP_NS)
+    time.sleep(0.1)
+    run(manager, clock, 10 * STEP_NS, 20 * STEP_NS)
+    assert made[0].closed and len(made) == 2 and cam.lost == 1
+    assert made[1].requests, 'the replacement got no request'
+
+
+def test_cameras_give_up_after_repeated_failures_and_say_so(caplog):
+    started = []
+
+    def broken(config, robots):
+        started.append(1)
+        raise OSError('no such interpreter')
+    manager = SensorManager(WorldConfig(), 1, broken, restart_delay=0.0, max_restarts=3)
+    [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('eye', 'l', update_rate=30)])
+    watched(cam)
+    for t in range(STEP_NS, 100 * STEP_NS, STEP_NS):
+        manager.update(t, lambda: {})  # returns: the world goes on
+    assert manager.failed and len(started) == 4  # the first and three replacements
+    assert any('no more images' in r.message and "'eye'" in r.message for r in caplog.records)
 
 
 # ------------------------------------------------------------------------ rendering
@@ -239,8 +433,7 @@ def test_render_processes_mirror_the_arm(arm1_sim):
     for joint2, at in ((1.57, 0), (0.01, 40 * STEP_NS)):
         model.robot.set_joint_positions({'joint2': joint2})
         sim.sensors.update(at, sim._robot_states)
-    while cam.in_flight:
-        sim.sensors._hand_over()
+    sim.sensors.drain()
     s = cam.sensor
     (t0, up), (t1, flat) = frames
     assert (t0, t1) == (0, 40 * STEP_NS)
@@ -251,6 +444,100 @@ def test_render_processes_mirror_the_arm(arm1_sim):
     assert len(procs) == sim.sensors.render_processes
     sim.close()
     assert all(proc.poll() is not None for proc in procs)  # they end with the simulation
+
+
+def camera_on_a_box(width=64, height=48, rate=30):
+    """A one-link model (no joints at all) with a camera looking down at the ground."""
+    return ('<robot name="box">%s<gazebo reference="body"><sensor type="camera" name="eye">'
+            '<update_rate>%g</update_rate><pose>0 0 0.5 0 1.2 0</pose><camera><image>'
+            '<width>%d</width><height>%d</height></image></camera>'
+            '<plugin filename="libgazebo_ros_camera.so"><cameraName>eye</cameraName></plugin>'
+            '</sensor></gazebo></robot>' % (box_link('body'), rate, width, height))
+
+
+@pytest.fixture
+def world_sim():
+    sims = []
+
+    def make(lockstep=False):
+        config = read_world(WORLD_FILE)
+        config.lockstep = lockstep
+        sims.append(Simulation(config))
+        return sims[-1]
+    yield make
+    for sim in sims:
+        sim.close()
+
+
+def step_until(sim, predicate, timeout, pacer=None):
+    """Step (at real time) until ``predicate()``; returns the longest step in wall seconds."""
+    pacer = pacer or Pacer(sim.period)
+    deadline, longest = time.monotonic() + timeout, 0.0
+    while not predicate():
+        assert time.monotonic() < deadline, 'timed out'
+        t = time.perf_counter()
+        sim.step()
+        longest = max(longest, time.perf_counter() - t)
+        pacer.wait()
+    return longest
+
+
+def test_a_model_without_joints_renders_and_its_name_comes_back_after_delete(world_sim):
+    sim = world_sim()
+    model = sim.spawn_urdf('cam', camera_on_a_box(), position=(0, 0, 0.05))
+    assert model.robot.state()[2] == []  # no joint positions at all
+    frames = watched(model.cameras[0])
+    step_until(sim, lambda: len(frames) >= 3, 30)
+    assert all(len(d) == 64 * 48 * 3 for _, d in frames)
+    assert not is_uniform(frames[-1][1], 64, 48, 64 * 3)  # the ground and the sky
+    old = model.cameras[0]
+    step_until(sim, lambda: old.in_flight > 0, 5)
+    count = len(frames)
+    sim.delete_model('cam')  # with a frame out
+    sim.sensors.drain()
+    assert len(frames) == count and sim.sensors.cameras == []
+    again = sim.spawn_urdf('cam', camera_on_a_box(), position=(0, 0, 0.05))
+    new_frames = watched(again.cameras[0])
+    step_until(sim, lambda: len(new_frames) >= 2, 30)
+    assert len(frames) == count  # the old camera got nothing late
+
+
+def test_a_killed_render_process_is_replaced_and_the_world_steps_on(world_sim, caplog):
+    sim = world_sim()
+    model = sim.spawn_urdf('cam', camera_on_a_box(), position=(0, 0, 0.05))
+    frames = watched(model.cameras[0])
+    step_until(sim, lambda: len(frames) >= 2, 30)
+    victim = sim.sensors.renderers[0]
+    os.kill(victim.pid, signal.SIGKILL)
+    count, t0 = len(frames), sim.time_ns
+    pids = lambda: {r.pid for r in sim.sensors.renderers}  # noqa: E731
+    longest = step_until(sim, lambda: len(frames) >= count + 10 and len(pids()) == 2
+                         and victim.pid not in pids(), 30)
+    assert longest < 0.1, 'a step took %.3f s' % longest  # the world did not stop for it
+    assert victim.process.poll() == -signal.SIGKILL  # reaped, not a zombie
+    assert frames[-1][0] > t0 and sim.sensors.restarts == 1 and not sim.sensors.failed
+    assert any(r.levelname == 'ERROR' and "'eye'" in r.message and 'killed by signal 9'
+               in r.message for r in caplog.records)
+
+
+@pytest.mark.parametrize('lockstep', [False, True], ids=['default', 'lockstep'])
+def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(world_sim, lockstep):
+    sim = world_sim(lockstep)
+    model = sim.spawn_urdf('cam', camera_on_a_box(1500, 1500, 30), position=(0, 0, 0.05))
+    frames = watched(model.cameras[0])
+    pacer = Pacer(sim.period)
+    step_until(sim, lambda: frames, 60, pacer)  # the render processes are up
+    seconds = 2.0 if lockstep else 4.0
+    wall0, sim0, count = time.perf_counter(), sim.time_ns, len(frames)
+    step_until(sim, lambda: time.perf_counter() - wall0 >= seconds, 60, pacer)
+    rtf = (sim.time_ns - sim0) * 1e-9 / (time.perf_counter() - wall0)
+    rate = (len(frames) - count) / ((sim.time_ns - sim0) * 1e-9)
+    print('%s: real-time factor %.3f, %.1f images per sim second'
+          % ('lockstep' if lockstep else 'default', rtf, rate))
+    if lockstep:  # every 30 Hz instant gets its frame, and the world slows down for them
+        assert rate >= 29 and rtf < 0.8
+    else:
+        assert rtf >= 0.99 and 0 < rate < 25
 
 
 def decode_png(data):
