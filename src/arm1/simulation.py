@@ -99,7 +99,7 @@ class Simulation:
                          "cannot spawn '%s': the robot description" % name)
             description = parse_urdf(urdf_xml, limits)
             resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages, limits)
-            sensors = camera_sensors(description)
+            sensors = camera_sensors(description, limits)
         except (UrdfError, LimitError) as exc:
             raise SpawnError("cannot spawn '%s': %s" % (name, exc))
         path = os.path.join(self._tmp.name, 'model-%d.urdf' % next(self._files))

@@ -18,7 +18,7 @@ from arm1.physics.camera import (Camera, CameraSensor, RenderError, SensorManage
 from arm1.physics.limits import LimitError, Limits
 from arm1.physics.sdf_world import WorldConfig, read_world
 from arm1.physics.urdf_model import UrdfError, parse_urdf
-from arm1.simulation import Simulation
+from arm1.simulation import Simulation, SpawnError
 from conftest import WORLD_FILE, box_link
 
 STEP_NS = 1000000  # 1 ms physics step
@@ -349,6 +349,22 @@ def test_the_worlds_render_budget_is_checked_before_anything_changes():
     assert (list(manager.cameras), dict(made[0].robots)) == before  # nothing changed
     manager.remove_robot('m1')  # frees its share
     manager.add_robot('m2', ('m2.urdf',), [CameraSensor('c2', 'l', 0, width=1000, height=1000)])
+
+
+def test_spawning_a_6000x6000_camera_is_refused_and_leaves_nothing_behind(world_sim):
+    sim = world_sim()
+    with pytest.raises(SpawnError, match=r"cannot spawn 'big'.*camera pixels is 36000000.*"
+                                         r"~limits/camera_pixels"):
+        sim.spawn_urdf('big', camera_on_a_box(6000, 6000, 30))
+    # raised, the world's render budget (1.08 Gpx/s) still says no, and names its own limit
+    sim.limits.camera_pixels = 36_000_000
+    with pytest.raises(SpawnError, match='render pixels per second is 1080000000.*'
+                                         '~limits/render_pixels_per_second'):
+        sim.spawn_urdf('big', camera_on_a_box(6000, 6000, 30))
+    assert not sim.models and not sim.world.robots and not sim.sensors.cameras
+    sim.limits.render_pixels_per_second = 1.1e9
+    model = sim.spawn_urdf('big', camera_on_a_box(6000, 6000, 30))
+    assert model.cameras[0].sensor.pixels == 36_000_000
 
 
 # --------------------------------------------------------------- failing render processes
