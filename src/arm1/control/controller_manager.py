@@ -5,6 +5,8 @@ simulation thread. A switch is queued and takes effect at the next update, and
 the caller waits for it (so while physics is paused it waits, as in Gazebo).
 """
 import logging
+import math
+import re
 import threading
 
 from .controller import ControllerError
@@ -17,6 +19,22 @@ CONTROLLER_TYPES = {c.type_name: c for c in (JointPositionController, JointState
 BASE_CLASS = 'controller_interface::ControllerBase'
 
 BEST_EFFORT, STRICT = 1, 2
+# A controller name is a relative ROS graph name (it becomes the controller's namespace).
+CONTROLLER_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*\Z')
+MAX_NAME_LENGTH = 255
+MAX_LISTED = 5  # names a message lists before it says how many more
+
+
+def shown(name: str, width: int = 60) -> str:
+    """A name as a message quotes it: cut to ``width`` characters, control characters escaped."""
+    text = name if name.isprintable() else repr(name)[1:-1]
+    return text if len(text) <= width else '%s...(%d characters)' % (text[:width - 20], len(name))
+
+
+def listed(names: list) -> str:
+    """At most MAX_LISTED quoted names, then how many more."""
+    out = ', '.join("'%s'" % shown(n) for n in names[:MAX_LISTED])
+    return out + (' and %d more' % (len(names) - MAX_LISTED) if len(names) > MAX_LISTED else '')
 
 
 class ControllerManagerError(Exception):
@@ -48,6 +66,12 @@ class ControllerManager:
         return sorted(CONTROLLER_TYPES)
 
     def load_controller(self, name):
+        if not isinstance(name, str) or len(name) > MAX_NAME_LENGTH \
+                or not CONTROLLER_NAME.match(name):
+            raise ControllerManagerError(
+                "Could not load controller '%s': %s" % (shown(str(name)), 'the name is empty'
+                    if not name else 'not a valid controller name (a relative ROS name of at '
+                    'most %d characters: letters, digits, _ and /)' % MAX_NAME_LENGTH))
         with self._lock:
             if name in self._loaded or name in self._loading:
                 raise ControllerManagerError(
@@ -93,7 +117,7 @@ class ControllerManager:
             if entry is None:
                 raise ControllerManagerError(
                     "Could not unload controller with name '%s' because no controller with this "
-                    "name exists" % name)
+                    "name exists" % shown(str(name)))
             if entry.state == 'running':
                 raise ControllerManagerError(
                     "Could not unload controller with name '%s' because it is still running" % name)
@@ -102,8 +126,16 @@ class ControllerManager:
             nh.shutdown()
 
     def switch_controller(self, start, stop, strictness=STRICT, timeout=0.0):
-        """Start and stop controllers at the next update; True when it happened."""
-        strictness = strictness if strictness in (BEST_EFFORT, STRICT) else BEST_EFFORT
+        """Start and stop controllers at the next update; True when it happened.
+
+        ``timeout`` in wall seconds; 0, negative, non-finite or beyond what a wait can take
+        mean none (the caller waits for the next update, as ros_control's 0 does)."""
+        if strictness not in (BEST_EFFORT, STRICT):
+            log.warning('switch_controller: strictness %s is neither BEST_EFFORT (1) nor STRICT '
+                        '(2); defaulting to BEST_EFFORT', strictness)
+            strictness = BEST_EFFORT
+        if not (math.isfinite(timeout) and 0 < timeout < threading.TIMEOUT_MAX):
+            timeout = None
         with self._lock:
             start = self._checked(start, 'start', lambda e: e.state != 'running', strictness)
             stop = self._checked(stop, 'stop', lambda e: e.state == 'running', strictness)
@@ -117,27 +149,33 @@ class ControllerManager:
                 return True
             done, result = threading.Event(), []
             self._pending.append((start, stop, done, result))
-        if done.wait(timeout if timeout and timeout > 0 else None):
+        if done.wait(timeout):
             return result[0]
         with self._lock:
             self._pending = [r for r in self._pending if r[2] is not done]
+        if result:  # applied between the timeout and the withdrawal
+            return result[0]
         log.error('Switching controllers timed out after %.3f s (is physics paused?)', timeout)
         return False
 
     def _checked(self, names, verb, ok, strictness):
-        out = []
+        out, skipped = [], {}  # why -> names, so a long list of bad names gives one message
         for name in names:
             entry = self._loaded.get(name)
             if entry is None or not ok(entry):
                 why = 'is not loaded' if entry is None else (
                     'is already running' if verb == 'start' else 'is not running')
                 if strictness == STRICT:
-                    log.error("Could not %s controller '%s': it %s", verb, name, why)
+                    log.error("Could not %s controller '%s': it %s", verb, shown(name), why)
                     return None
-                log.warning("Not %s controller '%s': it %s",
-                            'starting' if verb == 'start' else 'stopping', name, why)
+                skipped.setdefault(why, []).append(name)
                 continue
             out.append(entry)
+        for why, bad in skipped.items():
+            log.warning('Not %s controller%s %s: %s %s',
+                        'starting' if verb == 'start' else 'stopping', 's' if len(bad) > 1 else '',
+                        listed(bad), 'it' if len(bad) == 1 else 'they',
+                        why.replace('is ', 'are ') if len(bad) > 1 else why)
         return out
 
     def _resource_conflict(self, start, stop):

@@ -28,6 +28,7 @@ class JointPositionController(Controller):
         self._started = False
         self._loop_count = 0
         self._last_warn = -math.inf
+        self._clamp_said = False  # the first command outside the limits since start is logged
         self._state_pub = None
         self.last_state = None
         self._gains_lock = threading.Lock()
@@ -67,6 +68,12 @@ class JointPositionController(Controller):
                           'non-finite ' + ', '.join(bad) if bad else 'i_clamp_min > i_clamp_max',
                           current)
                 return current
+            negative = ['%s=%g' % (k, new[k]) for k in ('p', 'i', 'd') if new[k] < 0]
+            if negative:
+                # Allowed (control_toolbox's ranges are symmetric), but a negative gain drives
+                # the joint away from its target: say so.
+                log.warning('%s: negative pid gain(s) %s for joint %s push it away from its '
+                            'target', self.name, ', '.join(negative), self.joint.name)
             self._pending_gains = new
             return dict(new)
 
@@ -81,6 +88,14 @@ class JointPositionController(Controller):
                 log.warning('%s: ignoring non-finite command %r for joint %s; holding %.4f',
                             self.name, position, self.joint.name, self.command)
             return False
+        if not self._lower <= position <= self._upper and not self._clamp_said:
+            # Clamped in update, as ros_control does silently; said once per start so that a
+            # runaway value is visible without a warning per message of a sine into the limits.
+            self._clamp_said = True
+            log.warning('%s: command %g for joint %s is outside its limits [%.4f, %.4f]: '
+                        'clamped to %.4f (said once; later ones are clamped silently)',
+                        self.name, position, self.joint.name, self._lower, self._upper,
+                        min(max(position, self._lower), self._upper))
         self.command = float(position)
         return True
 
@@ -88,6 +103,7 @@ class JointPositionController(Controller):
         self.command = self.joint.position
         self.pid.reset()
         self._loop_count = 0
+        self._clamp_said = False
         self._started = True
 
     def stopping(self, time_ns):
