@@ -4,7 +4,7 @@
 #                catkin workspace .ws/ (.ws/src/arm1: links to this repo), built. Idempotent;
 #                stamp files under .ws/stamps make a second run take ~0.05 s.
 #   make build   catkin_make of .ws (always runs)
-#   make demo | test | bench   run inside the sourced workspace (tools/ws-run)
+#   make demo | test | bench   run inside the sourced workspace (tools/ws-run), ROS on loopback only
 #   make clean   remove .ws
 #
 # Runs as root (apt-get); elsewhere apt-get is run through sudo.

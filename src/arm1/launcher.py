@@ -4,6 +4,32 @@ import signal
 import socket
 import subprocess
 import time
+from typing import Dict, List, Mapping, Optional, Tuple
+from urllib.parse import urlparse
+
+# ROS 1 has no authentication: whoever reaches a node's or the master's port can move the
+# arm. rosgraph.network.get_bind_address binds 127.0.0.1 when ROS_HOSTNAME is 'localhost'.
+LOOPBACK_HOST = 'localhost'
+DEFAULT_MASTER_PORT = 11311
+
+
+def loopback_env(env: Mapping[str, str], port: Optional[int] = None) -> Dict[str, str]:
+    """A copy of env in which the master and every node listen on loopback only.
+
+    ROS_HOSTNAME=localhost, ROS_IP dropped (an outside ROS_IP would be advertised to
+    peers), ROS_MASTER_URI on localhost at port (default: the port env already names,
+    else 11311). tools/ws-run does the same in shell for every make target.
+    """
+    out = dict(env)
+    out.pop('ROS_IP', None)
+    out['ROS_HOSTNAME'] = LOOPBACK_HOST
+    if port is None:
+        try:
+            port = urlparse(out.get('ROS_MASTER_URI', '')).port
+        except ValueError:  # a malformed port in the URI
+            port = None
+    out['ROS_MASTER_URI'] = 'http://%s:%d' % (LOOPBACK_HOST, port or DEFAULT_MASTER_PORT)
+    return out
 
 
 def free_port():
@@ -12,19 +38,38 @@ def free_port():
         return s.getsockname()[1]
 
 
+def node_pid(name: str, master_uri: Optional[str] = None, caller: str = '/arm1_launcher') -> int:
+    """The pid of a running node (its slave API's getPid), looked up at the master."""
+    import xmlrpc.client
+    import rosgraph
+    master = rosgraph.Master(caller, master_uri=master_uri)
+    code, msg, pid = xmlrpc.client.ServerProxy(master.lookupNode(name)).getPid(caller)
+    if code != 1:
+        raise RuntimeError('getPid of %s failed: %s' % (name, msg))
+    return pid
+
+
+def listening_addresses(pid: int) -> List[Tuple[str, int]]:
+    """(ip, port) of every TCP socket the process listens on."""
+    import psutil
+    return sorted((c.laddr.ip, c.laddr.port) for c in psutil.Process(pid).connections('tcp')
+                  if c.status == psutil.CONN_LISTEN)
+
+
 class RosSession:
-    """A private master on a free port; children inherit it through ROS_MASTER_URI."""
+    """A private master on a free port, on loopback; children inherit it through the env."""
 
     def __init__(self, log_dir=None):
-        self.env = dict(os.environ)
-        self.env['ROS_MASTER_URI'] = 'http://localhost:%d' % free_port()
+        self.env = loopback_env(os.environ, free_port())
         if log_dir:
             self.env['ROS_LOG_DIR'] = log_dir
         self.procs = []
 
     def activate(self):
-        """Point this process's own rospy at the session's master."""
-        os.environ['ROS_MASTER_URI'] = self.env['ROS_MASTER_URI']
+        """Point this process's own rospy at the session's master, on loopback too."""
+        os.environ.pop('ROS_IP', None)
+        for key in ('ROS_MASTER_URI', 'ROS_HOSTNAME'):
+            os.environ[key] = self.env[key]
 
     def wait_for_master(self, timeout=20.0):
         import rosgraph
