@@ -1,14 +1,17 @@
 """Helpers of the camera, arm_mover and look_away rostests: images, poses and the render process."""
 import os
 import threading
+import time
 import xmlrpc.client
 
 import rosgraph
 import rospy
+from geometry_msgs.msg import Pose
 from sensor_msgs.msg import Image
 from std_msgs.msg import Float64
 
 from arm1.image import is_uniform
+from arm1.srv import DeleteModel, SpawnModel
 from rostest_util import JOINTS, positions, wait_for
 
 UP = (0.0, 1.57, 0.0, 0.0)  # arm upright: the camera at its tip sees only the sky
@@ -18,16 +21,18 @@ LOOK = (0.0, 0.6, -0.4, -0.4)  # look_away's default pose: the horizon
 class ImageRecorder:
     """Keeps every frame's header and size, and the latest frame (frames are 0.9 MB each)."""
 
-    def __init__(self, topic='/rgb_camera/image_raw'):
+    def __init__(self, topic='/rgb_camera/image_raw', buff_size=1 << 26):
         self.lock = threading.Lock()
         self.meta = []  # (stamp s, width, height, encoding, step, len(data), frame_id)
+        self.arrived = []  # wall time (monotonic) of each frame
         self.latest = None
-        self.sub = rospy.Subscriber(topic, Image, self._cb, queue_size=100, buff_size=1 << 26)
+        self.sub = rospy.Subscriber(topic, Image, self._cb, queue_size=100, buff_size=buff_size)
 
     def _cb(self, msg):
         with self.lock:
             self.meta.append((msg.header.stamp.to_sec(), msg.width, msg.height, msg.encoding,
                               msg.step, len(msg.data), msg.header.frame_id))
+            self.arrived.append(time.monotonic())
             self.latest = msg
 
     def frame_after(self, stamp, timeout=20):
@@ -96,3 +101,39 @@ def cpu_seconds(pid):
     with open('/proc/%d/stat' % pid) as f:
         fields = f.read().rsplit(')', 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+
+
+def camera_box_urdf(width, height, rate, camera_name='eye'):
+    """A one-link model (no joints) carrying a gazebo_ros_camera that looks down at the ground."""
+    return ('<robot name="box"><link name="body"><inertial><mass value="0.5"/><inertia ixx="1e-3" '
+            'ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial><visual><geometry><box '
+            'size="0.1 0.1 0.1"/></geometry></visual><collision><geometry><box size="0.1 0.1 0.1"/>'
+            '</geometry></collision></link><gazebo reference="body"><sensor type="camera" '
+            'name="%s"><update_rate>%g</update_rate><pose>0 0 0.5 0 1.2 0</pose><camera><image>'
+            '<width>%d</width><height>%d</height></image></camera><plugin name="cam" '
+            'filename="libgazebo_ros_camera.so"><cameraName>%s</cameraName></plugin></sensor>'
+            '</gazebo></robot>' % (camera_name, rate, width, height, camera_name))
+
+
+def spawn_urdf(name, xml, z=0.05):
+    """/gazebo/spawn_urdf_model: (success, status_message)."""
+    rospy.wait_for_service('/gazebo/spawn_urdf_model', 60)
+    pose = Pose()
+    pose.position.z = z
+    pose.orientation.w = 1.0
+    resp = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)(name, xml, '', pose, 'world')
+    return resp.success, resp.status_message
+
+
+def delete_model(name):
+    resp = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)(name)
+    return resp.success, resp.status_message
+
+
+def clock_rate(clock, since):
+    """Sim seconds per wall second of the /clock messages (a rostest_util Recorder) since a
+    wall time (monotonic), from the first to the last of them."""
+    with clock.lock:
+        msgs = [(t, m.clock.to_sec()) for t, m in clock.msgs if t >= since]
+    (w0, s0), (w1, s1) = msgs[0], msgs[-1]
+    return (s1 - s0) / (w1 - w0)

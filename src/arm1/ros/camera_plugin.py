@@ -1,17 +1,30 @@
 """gazebo_ros_camera for the stand-in: a camera sensor's frames as sensor_msgs Image and CameraInfo.
 
-The world (physics.camera) renders only while ``image_raw`` has a subscriber;
-``camera_info`` alone is published at the sensor's rate without rendering.
-Frames arrive on the world's main thread, stamped with the sim time they show.
+The world (physics.sensor_manager) renders only while ``image_raw`` has a
+subscriber; ``camera_info`` alone is published at the sensor's rate without
+rendering. Frames arrive on the world's physics thread, stamped with the sim
+time they show; they are published from a thread of the camera's own, so that
+serializing a large frame (108 MB at 6000x6000) never holds the physics.
 """
+from __future__ import annotations
+
+import collections
+import struct
+import threading
+from typing import Any, Deque, Tuple
+
 import rospy
 from sensor_msgs.msg import CameraInfo, Image
 
-from ..physics.camera import intrinsics
+from ..physics.camera_sensor import CameraSensor, intrinsics
+from ..physics.sensor_manager import Camera
 from .node_handle import to_time
 
+MAX_PENDING_IMAGES = 2  # frames waiting for the publishing thread; older ones are dropped
+CHUNK = 1 << 20  # bytes of pixels serialized at a time
 
-def camera_info(sensor):
+
+def camera_info(sensor: CameraSensor) -> CameraInfo:
     """The CameraInfo of an ideal pinhole with the sensor's size and field of view."""
     k, proj = intrinsics(sensor.width, sensor.height, sensor.horizontal_fov)
     msg = CameraInfo(height=sensor.height, width=sensor.width, distortion_model='plumb_bob',
@@ -20,35 +33,103 @@ def camera_info(sensor):
     return msg
 
 
+class ChunkedImage(Image):
+    """sensor_msgs/Image (same type and wire format) whose pixels are serialized in slices.
+
+    genpy writes ``data`` with one struct.pack and one write, two C calls that keep
+    the GIL for tens of milliseconds on a large frame; between slices the physics
+    thread gets it back.
+    """
+
+    def serialize(self, buff: Any) -> None:
+        data = self.data
+        self.data = b''
+        try:
+            super().serialize(buff)  # everything up to a data length of 0
+        finally:
+            self.data = data
+        buff.seek(buff.tell() - 4)
+        buff.write(struct.pack('<I', len(data)))
+        view = memoryview(data)
+        for start in range(0, len(view), CHUNK):
+            buff.write(view[start:start + CHUNK])
+
+
 class GazeboRosCamera:
-    def __init__(self, camera):
-        """``camera`` is a physics.camera.Camera of a spawned model."""
+    def __init__(self, camera: Camera) -> None:
+        """``camera`` is a physics.sensor_manager.Camera of a spawned model."""
         self.sensor = sensor = camera.sensor
         self._camera = camera
         # A viewer more than 5 frames behind loses the oldest (ROS's way; Gazebo keeps 2).
         self._image_pub = rospy.Publisher(sensor.image_topic, Image, queue_size=5)
         self._info_pub = rospy.Publisher(sensor.camera_info_topic, CameraInfo, queue_size=5)
         self._info = camera_info(sensor)
+        self._pending: Deque[Tuple[str, int, bytes]] = collections.deque()
+        self._cond = threading.Condition()
+        self._running = True
+        self.dropped = 0  # frames the publishing thread was too slow for
+        self._thread = threading.Thread(target=self._run, daemon=True,
+                                        name='camera-%s' % sensor.name)
+        self._thread.start()
         camera.wants_image = lambda: self._image_pub.get_num_connections() > 0
         camera.wants_info = lambda: self._info_pub.get_num_connections() > 0
-        camera.on_image = self.publish_image
-        camera.on_info = self.publish_info
+        camera.on_image = self._queue_image
+        camera.on_info = self._queue_info
 
-    def publish_image(self, stamp_ns, data):
+    # -- physics thread: hand over, never wait -------------------------------------------
+    def _queue_image(self, stamp_ns: int, data: bytes) -> None:
+        with self._cond:
+            images = [item for item in self._pending if item[0] == 'image']
+            if len(images) >= MAX_PENDING_IMAGES:
+                self._pending.remove(images[0])
+                self.dropped += 1
+            self._pending.append(('image', stamp_ns, data))
+            self._cond.notify()
+
+    def _queue_info(self, stamp_ns: int) -> None:
+        with self._cond:
+            self._pending.append(('info', stamp_ns, b''))
+            self._cond.notify()
+
+    # -- publishing thread ---------------------------------------------------------------
+    def _run(self) -> None:
+        while True:
+            with self._cond:
+                self._cond.wait_for(lambda: self._pending or not self._running)
+                if not self._running:
+                    return
+                kind, stamp_ns, data = self._pending.popleft()
+            try:
+                if kind == 'image':
+                    self.publish_image(stamp_ns, data)
+                else:
+                    self.publish_info(stamp_ns)
+            except rospy.ROSException:  # the topic closed: shut down, or the model deleted
+                if not self._running or rospy.is_shutdown():
+                    return
+                raise
+
+    def publish_image(self, stamp_ns: int, data: bytes) -> None:
         s = self.sensor
-        msg = Image(height=s.height, width=s.width, encoding=s.encoding, is_bigendian=0,
-                    step=s.step, data=data)
+        msg = ChunkedImage(height=s.height, width=s.width, encoding=s.encoding, is_bigendian=0,
+                           step=s.step, data=data)
         msg.header.stamp = to_time(stamp_ns)
         msg.header.frame_id = s.frame_name
         self._image_pub.publish(msg)
         self.publish_info(stamp_ns)
 
-    def publish_info(self, stamp_ns):
+    def publish_info(self, stamp_ns: int) -> None:
         self._info.header.stamp = to_time(stamp_ns)
         self._info_pub.publish(self._info)
 
-    def shutdown(self):
+    def shutdown(self) -> None:
+        """Stop publishing (without waiting for a frame being published) and unadvertise."""
         cam = self._camera
         cam.on_image = cam.on_info = None
+        cam.wants_image = cam.wants_info = lambda: False
+        with self._cond:
+            self._running = False
+            self._pending.clear()
+            self._cond.notify()
         self._image_pub.unregister()
         self._info_pub.unregister()
