@@ -48,7 +48,9 @@ class Limits:
                                  % (source, name, ', '.join(sorted(known))))
             kind = int if known[name].type == 'int' else float
             try:
-                value = kind(float(raw)) if kind is int else kind(raw)
+                value = float(raw)
+                if kind is int and math.isfinite(value):  # int(inf) would raise OverflowError
+                    value = int(value)
             except (TypeError, ValueError):
                 raise LimitError('%s: limit %s = %r is not a number' % (source, name, raw))
             if not math.isfinite(value) or value <= 0:
