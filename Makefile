@@ -65,6 +65,10 @@ setup: $(STAMPS)/build link-package
 venv: $(STAMPS)/venv
 
 # a. Debian packages: dpkg-query first, so a re-run does no apt work at all.
+#    Another apt holding the lock (unattended upgrades) is waited for, up to APT_LOCK_TIMEOUT s:
+#    apt's own DPkg::Lock::Timeout for install; update (lists lock, which that option does
+#    not cover in apt 2.6) is retried while apt says the lock is held.
+APT_LOCK_TIMEOUT ?= 600
 $(STAMPS)/apt: $(ROOT)/Makefile
 	@mkdir -p $(STAMPS)
 	@missing=""; \
@@ -73,8 +77,17 @@ $(STAMPS)/apt: $(ROOT)/Makefile
 	done; \
 	if [ -n "$$missing" ]; then \
 	  echo "setup: apt-get install$$missing"; \
-	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -q; \
-	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $$missing; \
+	  echo "setup: if another apt holds the package lock (unattended upgrades on a fresh machine), this waits for it, up to $(APT_LOCK_TIMEOUT) s"; \
+	  deadline=$$(( $$(date +%s) + $(APT_LOCK_TIMEOUT) )); said=""; \
+	  until $(SUDO) env LC_ALL=C DEBIAN_FRONTEND=noninteractive apt-get update -q 2>$(STAMPS)/apt-update.err; do \
+	    if grep -q 'Could not get lock' $(STAMPS)/apt-update.err && [ $$(date +%s) -lt $$deadline ]; then \
+	      [ -n "$$said" ] || echo "setup: waiting for the apt lists lock: $$(grep -m1 'Could not get lock' $(STAMPS)/apt-update.err)"; \
+	      said=1; sleep 5; \
+	    else cat $(STAMPS)/apt-update.err >&2; exit 1; fi; \
+	  done; \
+	  cat $(STAMPS)/apt-update.err >&2; rm -f $(STAMPS)/apt-update.err; \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=$(APT_LOCK_TIMEOUT) \
+	    install -y -q --no-install-recommends $$missing; \
 	else \
 	  echo "setup: Debian packages already installed"; \
 	fi
