@@ -49,6 +49,13 @@ class Spawner:
         return True
 
     def spawn(self):
+        try:
+            self._spawn()
+        except (rospy.ServiceException, rospy.ROSException) as exc:
+            # e.g. the model was deleted while its controllers were being loaded
+            rospy.logerr('Controller Spawner: the controller manager went away: %s', exc)
+
+    def _spawn(self):
         for name in self.args.controllers:
             rospy.loginfo('Loading controller: %s', name)
             if self.load(name).ok:
