@@ -10,10 +10,10 @@ import math
 import os
 import tempfile
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Optional, Protocol, Sequence
+from typing import Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from .control.controller_manager import ControllerManager
-from .physics.camera import Camera, SensorManager, camera_sensors
+from .physics.camera import Camera, CameraSensor, SensorManager, camera_sensors
 from .physics.limits import LimitError
 from .physics.names import IllegalName, check_name, shown
 from .physics.robot import Robot, RobotLoadError
@@ -44,6 +44,16 @@ class Model:
     namespace: str = ''
     cameras: List[Camera] = field(default_factory=list)  # one per camera sensor
     plugins: List[Plugin] = field(default_factory=list)  # the ROS layer's part, shut down on delete
+    file: str = ''  # the URDF file pybullet and the render processes load, in the world's folder
+
+
+@dataclass
+class PreparedUrdf:
+    """A spawn request checked and parsed, not yet in the world."""
+    name: str
+    description: RobotModel
+    sensors: List[CameraSensor]
+    load_args: Tuple[str, Tuple[float, ...], Tuple[float, ...], bool]  # World.load_robot's
 
 
 ControllerManagerFactory = Callable[[DefaultRobotHWSim, str], ControllerManager]
@@ -84,19 +94,25 @@ class Simulation:
         (it may set ``controller_manager`` itself). Raises SpawnError with a message naming
         the culprit; a failed spawn leaves nothing behind.
         """
+        prepared = self.prepare_urdf(name, urdf_xml, position, orientation, find_package)
+        return self.spawn_prepared(prepared, robot_namespace, controller_manager_factory, attach)
+
+    def prepare_urdf(self, name: str, urdf_xml: str, position: Sequence[float] = (0, 0, 0),
+                     orientation: Sequence[float] = (0, 0, 0, 1),
+                     find_package: Optional[Callable[[str], str]] = None) -> PreparedUrdf:
+        """Everything of a spawn that reads only the request: parsing, limits, meshes.
+
+        Touches no simulation state, so the ROS layer runs it on the caller's thread and a
+        large or hostile document costs that caller, not the physics loop.
+        """
         limits = self.limits
         try:
             check_name(name, 'model', limits.name_length)
         except IllegalName as exc:
             raise SpawnError('cannot spawn: %s' % exc)
-        if name in self.models:
-            raise SpawnError("model name '%s' already exists" % name)
         if not _finite_pose(position, orientation):
             raise SpawnError("cannot spawn '%s': the initial pose is not 7 finite numbers" % name)
         try:
-            limits.check('models', len(self.models) + 1, "cannot spawn '%s'" % name)
-            limits.check('description_bytes', len(urdf_xml.encode('utf-8', 'replace')),
-                         "cannot spawn '%s': the robot description" % name)
             description = parse_urdf(urdf_xml, limits)
             resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages, limits)
             sensors = camera_sensors(description, limits)
@@ -105,16 +121,32 @@ class Simulation:
         path = os.path.join(self._tmp.name, 'model-%d.urdf' % next(self._files))
         with open(path, 'w') as f:
             f.write(resolved)
-        load_args = (path, tuple(position), tuple(orientation), description.root_link == 'world')
+        return PreparedUrdf(name, description, sensors, (
+            path, tuple(position), tuple(orientation), description.root_link == 'world'))
+
+    def spawn_prepared(self, prepared: PreparedUrdf, robot_namespace: str = '',
+                       controller_manager_factory: Optional[ControllerManagerFactory] = None,
+                       attach: Optional[Callable[[Model], None]] = None) -> Model:
+        """The part of a spawn that changes the world (see ``spawn_urdf``). Sim thread only."""
+        name = prepared.name
         try:
-            robot = self.world.load_robot(*load_args)
-        except RobotLoadError as exc:
-            os.unlink(path)
-            raise SpawnError("cannot spawn '%s': %s" % (name, exc))
-        model = Model(name, description, robot)
+            if name in self.models:
+                raise SpawnError("model name '%s' already exists" % name)
+            try:
+                self.limits.check('models', len(self.models) + 1, 'the world')
+            except LimitError as exc:
+                raise SpawnError("cannot spawn '%s': %s" % (name, exc))
+            try:
+                robot = self.world.load_robot(*prepared.load_args)
+            except RobotLoadError as exc:
+                raise SpawnError("cannot spawn '%s': %s" % (name, exc))
+        except SpawnError:
+            os.unlink(prepared.load_args[0])
+            raise
+        model = Model(name, prepared.description, robot, file=prepared.load_args[0])
         try:
             self._attach_plugins(model, robot_namespace, controller_manager_factory)
-            model.cameras = self.sensors.add_robot(name, load_args, sensors)
+            model.cameras = self.sensors.add_robot(name, prepared.load_args, prepared.sensors)
             if attach is not None:
                 attach(model)
             if model.controller_manager is not None and model not in self._controlled:
@@ -151,6 +183,8 @@ class Simulation:
         self.sensors.remove_robot(model.name)
         if model.robot in self.world.robots:
             self.world.remove_robot(model.robot)
+        if model.file and os.path.exists(model.file):
+            os.unlink(model.file)
 
     def delete_model(self, name: str) -> Model:
         model = self.models.pop(name, None)

@@ -99,8 +99,7 @@ class GazeboRosApi:
         if q == (0, 0, 0, 0):
             q = (0, 0, 0, 1)
         try:
-            model = self.call_in_sim_thread(self.spawn, req.model_name, req.model_xml,
-                                            xyz, q, req.robot_namespace)
+            model = self.spawn(req.model_name, req.model_xml, xyz, q, req.robot_namespace)
         except SpawnError as exc:
             rospy.logerr(str(exc))
             return False, str(exc)
@@ -113,12 +112,21 @@ class GazeboRosApi:
         return True, msg
 
     def spawn(self, name, xml, xyz, quat, namespace=''):
-        """Spawn a URDF model with its plugins (controller manager, cameras). Sim thread only."""
+        """Spawn a URDF model with its plugins (controller manager, cameras).
+
+        The request is parsed and checked on the calling thread; only what changes the
+        world runs on the sim thread, so a large document does not hold physics back.
+        """
         if namespace and not rosgraph.names.is_legal_name(namespace):
             raise SpawnError("cannot spawn '%s': robot_namespace %s is not a legal ROS name"
                              % (name, shown(namespace)))
-        return self.sim.spawn_urdf(name, xml, xyz, quat, namespace, self._find_package,
-                                   attach=self._attach_plugins)
+        prepared = self.sim.prepare_urdf(name, xml, xyz, quat, self._find_package)
+        if threading.current_thread() is threading.main_thread():
+            return self._spawn_prepared(prepared, namespace)
+        return self.call_in_sim_thread(self._spawn_prepared, prepared, namespace)
+
+    def _spawn_prepared(self, prepared, namespace):
+        return self.sim.spawn_prepared(prepared, namespace, attach=self._attach_plugins)
 
     @staticmethod
     def _attach_plugins(model):
