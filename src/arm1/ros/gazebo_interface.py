@@ -26,6 +26,7 @@ from ..physics.sdf_world import SdfError, WorldConfig, read_world
 from ..simulation import Simulation, SpawnError
 from .camera_plugin import GazeboRosCamera
 from .controller_manager_interface import ControllerManagerInterface
+from .master_watch import MasterWatch
 from .node_handle import route_core_logs, synchronous_publisher, to_time
 
 
@@ -233,6 +234,7 @@ def start_world(args):
     """Init the node and build the world of parsed gzserver ``args``: (api, pacer)."""
     rospy.init_node('gazebo')
     route_core_logs()
+    MasterWatch()  # a restarted master learns the world's topics and services again
     try:
         config = read_world(args.world) if args.world else WorldConfig()
     except SdfError as exc:
