@@ -5,6 +5,7 @@
 #                stamp files under .ws/stamps make a second run take ~0.05 s.
 #   make build   catkin_make of .ws (always runs)
 #   make demo | test | bench   run inside the sourced workspace (tools/ws-run), ROS on loopback only
+#   make soak    robot_spawn.launch under simple_mover for SOAK_MINUTES (10); not in make test
 #   make clean   remove .ws
 #
 # Runs as root (apt-get); elsewhere apt-get is run through sudo.
@@ -48,7 +49,7 @@ BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
   $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py
 
-.PHONY: setup venv build demo test bench clean link-package
+.PHONY: setup venv build demo test bench soak clean link-package
 
 # A stamp is only trusted while what it stands for is still there.
 ifeq ($(wildcard $(VENV_PY)),)
@@ -152,6 +153,11 @@ test: setup
 
 bench: setup
 	$(WS_SHELL) python -m arm1.bench
+
+# Not part of make test: robot_spawn.launch + simple_mover + a camera viewer for SOAK_MINUTES.
+SOAK_MINUTES ?= 10
+soak: setup
+	$(WS_SHELL) python -m arm1.bench.soak --minutes $(SOAK_MINUTES)
 
 clean:
 	rm -rf $(WS)

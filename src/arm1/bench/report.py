@@ -55,6 +55,8 @@ def table(results):
 def write_markdown(results, path):
     m = results['machine']
     text = table(results)
+    from .soak import existing_section
+    soak = existing_section(path)  # make soak's section outlives a new make bench
     with open(path, 'w') as f:
         f.write('# Benchmarks\n\n'
                 'Made by `make bench` (`python -m arm1.bench`); the raw numbers are in '
@@ -69,6 +71,8 @@ def write_markdown(results, path):
         f.write(unmet_section(results))
         f.write(profile_section(results))
         f.write(METHOD)
+        if soak:
+            f.write('\n' + soak)
     return text
 
 
