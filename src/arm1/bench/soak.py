@@ -306,9 +306,10 @@ def markdown(result: dict) -> str:
              'robot_spawn.launch gui:=false` (the world, arm1 with its camera, arm_mover, '
              'look_away), `rosrun arm1 simple_mover __name:=simple_mover` and a viewer of '
              '`/rgb_camera/image_raw` (stamps only), on a private master on loopback. '
-             'One run, %s; %s, %s cores. Raw samples in `bench/soak.json`, the plot in '
-             '`bench/soak.png`. %s' % (
-                 result['minutes_asked'], m['date'], m['cpu'] or 'unknown CPU', m['cores'],
+             'One run, %s, code at %s; %s, %s cores. Raw samples in `bench/soak.json`, the '
+             'plot in `bench/soak.png`. %s' % (
+                 result['minutes_asked'], m['date'], result.get('source', 'unknown'),
+                 m['cpu'] or 'unknown CPU', m['cores'],
                  'Other work ran on the machine during the soak (the "other work" row): '
                  'the figures are from a shared machine.' if f['other_cpu_cores'] >= 0.1
                  else 'Nothing else of note ran on the machine.'),
@@ -343,6 +344,20 @@ def existing_section(path: str) -> str:
         return ''
     return SECTION_BEGIN + text.split(SECTION_BEGIN, 1)[1].split(SECTION_END, 1)[0] + \
         SECTION_END + '\n'
+
+
+def source_state() -> str:
+    """The commit the run used, and whether src/ differed from it (others may be mid-change)."""
+    import subprocess
+    try:
+        head = subprocess.run(['git', '-C', ROOT, 'rev-parse', '--short', 'HEAD'],
+                              capture_output=True, text=True, check=True).stdout.strip()
+        dirty = subprocess.run(['git', '-C', ROOT, 'status', '--porcelain', 'src', 'scripts',
+                                'launch', 'urdf', 'worlds', 'config'],
+                               capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return 'unknown'
+    return head + (' with uncommitted changes under src/ etc.' if dirty else '')
 
 
 def run(minutes: float, warmup_s: float) -> Tuple[List[dict], Optional[str]]:
@@ -412,6 +427,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     if not 0 <= warmup < 60.0 * args.minutes:
         parser.error('--warmup %g s must be shorter than the run (%g s)' % (
             warmup, 60.0 * args.minutes))
+    source = source_state()
     samples, why = run(args.minutes, warmup)
     if why:
         print('soak: FAILED: %s' % why, file=sys.stderr)
@@ -423,6 +439,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     print('\n'.join(lines))
     from .__main__ import machine
     result = {'machine': machine(), 'minutes_asked': args.minutes, 'stopped_early': why,
+              'source': source,
               'figures': fig, 'minutes': minutes, 'samples': samples}
     os.makedirs(os.path.join(args.out, 'bench'), exist_ok=True)
     with open(os.path.join(args.out, 'bench', 'soak.json'), 'w') as f:
