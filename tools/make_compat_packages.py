@@ -56,7 +56,7 @@ PACKAGES = {
     'gazebo_ros': ('Stand-in for gazebo_ros: empty_world.launch, spawn_model and gzserver on '
                    "arm1's pybullet world.", {
                        'spawn_model': 'arm1.ros.spawn_model',
-                       'gzserver': 'arm1.ros.gazebo_interface'}),
+                       'gzserver': 'arm1.ros.world_node'}),
     'controller_manager': ("Stand-in for controller_manager's spawner, backed by arm1's "
                            'controller managers.', {'spawner': 'arm1.ros.spawner'}),
     'xacro': ('Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '

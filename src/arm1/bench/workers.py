@@ -50,8 +50,8 @@ def bare(seconds):
     import tempfile
     import pybullet as p
     from ..physics.urdf_model import resolve_mesh_uris
-    from ..ros.gazebo_interface import PackageFinder
-    xml = resolve_mesh_uris(arm1_urdf(), PackageFinder())
+    from ..ros.packages import find_package
+    xml = resolve_mesh_uris(arm1_urdf(), find_package)
     with tempfile.NamedTemporaryFile('w', suffix='.urdf', delete=False) as f:
         f.write(xml)
     cid = p.connect(p.DIRECT)
@@ -93,7 +93,7 @@ def bare(seconds):
 def _start_standin(arms, real_time_update_rate):
     """The world node of gzserver with ``arms`` arm1s, each in /armK, controllers started."""
     import rospy
-    from ..ros.gazebo_interface import parse_args, start_world
+    from ..ros.world_node import parse_args, start_world
     argv = [WORLD]
     if real_time_update_rate is not None:
         argv += ['--real-time-update-rate', str(real_time_update_rate)]
@@ -137,8 +137,8 @@ PROFILE_PARTS = [
     ('ROS publishing (messages, rospy, sockets)',
      lambda f, fn: any(m in f for m in ('rospy', 'genpy', '_msgs/msg', 'node_handle.py'))
      or 'sendall' in fn),
-    ('world loop, clock, pacing', lambda f, fn: any(m in f for m in ('gazebo_interface.py',
-                                                                     'pacer.py'))),
+    ('world loop, clock, pacing', lambda f, fn: any(m in f for m in (
+        'world_loop.py', 'sim_clock.py', 'sim_thread.py', 'pacer.py'))),
 ]
 
 
@@ -199,7 +199,7 @@ def idle_world(seconds):
     what each wake-up costs in CPU is measured apart, with plain 0.9 ms sleeps.
     """
     import rospy
-    from ..ros.gazebo_interface import parse_args, start_world
+    from ..ros.world_node import parse_args, start_world
     n = 2000
     c0 = time.process_time()
     for _ in range(n):

@@ -1,0 +1,99 @@
+"""The world node (``rosrun arm1 gzserver``): a Simulation with gazebo_ros's ROS API.
+
+Physics runs on the main thread (WorldLoop); service calls arrive on rospy's threads
+and are handed to it between two steps (SimThreadCalls), so pybullet is only touched there.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import List, Optional, Sequence, Tuple
+
+import rospy
+
+from ..pacer import Pacer, wall_period
+from ..physics.limits import LimitError, Limits
+from ..physics.sdf_world import SdfError, WorldConfig, read_world
+from ..simulation import Model, Simulation
+from .gazebo_ros_api import GazeboRosApi
+from .master_watch import MasterWatch
+from .node_handle import route_core_logs
+from .sim_clock import SimClock
+from .sim_thread import SimThreadCalls
+from .world_loop import WorldLoop
+
+
+class WorldNode:
+    """What ``start_world`` builds: the simulation, its loop and its services."""
+
+    def __init__(self, sim: Simulation, paused: bool = False) -> None:
+        self.sim = sim
+        self.calls = SimThreadCalls()
+        clock = SimClock(rospy.get_param('~pub_clock_frequency', 100))
+        self.loop = WorldLoop(sim, self.calls, clock, paused)
+        self.api = GazeboRosApi(sim, self.calls, self.loop)
+
+    def spawn(self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float],
+              namespace: str = '') -> Model:
+        return self.api.spawn(name, xml, xyz, quat, namespace)
+
+    def run(self, pacer: Pacer) -> None:
+        self.loop.run(pacer)
+
+
+def parse_args(argv: List[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog='gzserver', description=(
+        'pybullet stand-in for gzserver with gazebo_ros: runs the world file, publishes /clock '
+        'and offers the /gazebo services.'))
+    parser.add_argument('world', nargs='?', help='SDF world file (default: an empty world)')
+    parser.add_argument('-u', '--paused', action='store_true', help='start with physics paused')
+    parser.add_argument('--gui', action='store_true', help="open pybullet's window if a display exists")
+    parser.add_argument('-e', '--physics', default='ode', help='ignored: pybullet is the engine')
+    parser.add_argument('--verbose', action='store_true')
+    parser.add_argument('--lockstep', action='store_true', help=(
+        'physics waits for every camera frame (deterministic; the real-time factor drops '
+        'instead of the image rate)'))
+    parser.add_argument('--real-time-factor', type=float, help='overrides the world file')
+    parser.add_argument('--real-time-update-rate', type=float, help='overrides the world file')
+    return parser.parse_args(argv)
+
+
+def world_config(args: argparse.Namespace) -> WorldConfig:
+    """The world file, with the command line's and the ``~limits`` parameters' overrides."""
+    config = read_world(args.world) if args.world else WorldConfig()
+    config.lockstep = args.lockstep
+    config.limits = Limits.from_mapping(rospy.get_param('~limits', {}),
+                                        rospy.resolve_name('~limits'), config.limits)
+    for attr in ('real_time_factor', 'real_time_update_rate'):
+        if getattr(args, attr) is not None:
+            setattr(config, attr, getattr(args, attr))
+    return config
+
+
+def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
+    """Init the node and build the world of parsed gzserver ``args``."""
+    rospy.init_node('gazebo')
+    route_core_logs()
+    MasterWatch()  # a restarted master learns the world's topics and services again
+    try:
+        config = world_config(args)
+    except (SdfError, LimitError) as exc:
+        rospy.logfatal(str(exc))
+        sys.exit(1)
+    if config.skipped:
+        rospy.logwarn('world: not built: %s', '; '.join('%s (%s)' % s for s in config.skipped))
+    node = WorldNode(Simulation(config, gui=args.gui), paused=args.paused)
+    period = wall_period(config.max_step_size, config.real_time_factor,
+                         config.real_time_update_rate)
+    rospy.loginfo('world ready: step %.4f s, real-time factor %g, update rate %g Hz%s',
+                  config.max_step_size, config.real_time_factor, config.real_time_update_rate,
+                  ' (paused)' if args.paused else '')
+    return node, Pacer(period)
+
+
+def main(argv: Optional[List[str]] = None) -> None:
+    node, pacer = start_world(parse_args(rospy.myargv(sys.argv if argv is None else argv)[1:]))
+    try:
+        node.run(pacer)
+    finally:
+        node.sim.close()
