@@ -16,7 +16,7 @@ from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from ..physics.names import shown
 from ..simulation import Model, PreparedUrdf, Simulation, SpawnError
 from .camera_plugin import GazeboRosCamera
-from .controller_manager_interface import ControllerManagerInterface
+from .controller_manager_services import ControllerManagerServices
 from .packages import find_package
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop
@@ -86,9 +86,9 @@ class GazeboRosApi:
             if not rosgraph.names.is_legal_name(model.namespace):
                 raise SpawnError('controller manager namespace %s is not a legal ROS name'
                                  % shown(model.namespace))
-            interface = ControllerManagerInterface(model.hw, model.namespace)
-            model.controller_manager = interface.manager
-            model.plugins.append(interface)
+            services = ControllerManagerServices(model.hw, model.namespace)
+            model.controller_manager = services.manager
+            model.plugins.append(services)
         for camera in model.cameras:
             model.plugins.append(GazeboRosCamera(camera))
 

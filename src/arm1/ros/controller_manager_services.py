@@ -1,4 +1,5 @@
-"""The ``<ns>/controller_manager/*`` services, translated onto the ROS-free ControllerManager."""
+"""The ``<ns>/controller_manager/*`` services (upstream: the ROS side of controller_manager),
+translated onto the ROS-free ControllerManager."""
 import rospy
 
 from arm1.msg import ControllerState, HardwareInterfaceResources
@@ -9,7 +10,7 @@ from ..control.controller_manager import BASE_CLASS, ControllerManager, Controll
 from .node_handle import RosNodeHandle
 
 
-class ControllerManagerInterface:
+class ControllerManagerServices:
     def __init__(self, robot_hw, namespace):
         self.manager = ControllerManager(robot_hw, RosNodeHandle, namespace)
         base = '%s/controller_manager/' % namespace.rstrip('/')
