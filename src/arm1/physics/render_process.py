@@ -12,7 +12,9 @@ Protocol on a socket pair (multiprocessing.connection framing): world -> child
 ``(world_config, {name: load args})`` once, then ``('add', name, load args)``,
 ``('remove', name)``, ``('render', model, sensor, states)``; child -> world, one
 reply per render request in order: ``('frame', nbytes)`` followed by the image
-bytes as one raw message, or ``('error', text)``.
+bytes, raw (no framing), or ``('error', text)``. The world receives those bytes
+straight into a buffer of its own with the GIL released: the pages of a fresh
+108 MB buffer fault in then, not on a copy that would hold the physics thread.
 """
 from __future__ import annotations
 
@@ -38,7 +40,7 @@ log = logging.getLogger('arm1.physics')
 RENDER_TIMEOUT = 30.0  # s of wall time one frame may take before the renderer counts as hung
 SECONDS_PER_PIXEL = 1e-6  # on top of RENDER_TIMEOUT: a 6000x6000 frame takes 4 s unloaded
 
-Reply = Tuple[str, Any]  # ('frame', bytes) or ('error', text)
+Reply = Tuple[str, Any]  # ('frame', bytes-like) or ('error', text)
 
 
 class RenderError(RuntimeError):
@@ -74,6 +76,8 @@ def render(client: int, sensor: CameraSensor, link_position: Sequence[float],
 def _serve(conn: Connection) -> None:
     """The render process: a headless mirror of the world that answers render requests."""
     world = None
+    raw = socket.socket(fileno=os.dup(conn.fileno()))  # the same socket, for the pixels
+    raw.setblocking(True)
     try:
         world_config, robots = conn.recv()
         world = World(world_config, gui=False)
@@ -113,10 +117,11 @@ def _serve(conn: Connection) -> None:
                     conn.send(('error', '%s: %s' % (type(exc).__name__, exc)))
                 else:
                     conn.send(('frame', len(data)))
-                    conn.send_bytes(data)
+                    raw.sendall(data)
     except (EOFError, OSError):  # the world has gone
         pass
     finally:
+        raw.close()
         if world is not None:
             world.close()
 
@@ -152,6 +157,8 @@ class RenderProcess:
         theirs.close()
         self.pid = self.process.pid
         self._conn = Connection(ours.detach())
+        self._raw = socket.socket(fileno=os.dup(self._conn.fileno()))
+        self._raw.setblocking(True)
         self.in_flight = 0  # render requests not answered yet (the sensor manager counts)
         self._replies: collections.deque = collections.deque()
         self._gone: Optional[str] = None  # why no more replies will come
@@ -167,7 +174,7 @@ class RenderProcess:
             while True:
                 kind, payload = self._conn.recv()
                 if kind == 'frame':
-                    payload = self._conn.recv_bytes()  # raw: no pickle copy of a large frame
+                    payload = self._receive_pixels(payload)
                 with self._cond:
                     self._replies.append((kind, payload))
                     self._cond.notify()
@@ -185,6 +192,17 @@ class RenderProcess:
                 self._gone = 'render process %d is gone: %s' % (self.pid, why)
                 self._cond.notify()
 
+    def _receive_pixels(self, nbytes: int) -> memoryview:
+        # np.empty: no zeroing; recv_into fills it without the GIL
+        view = memoryview(np.empty(nbytes, np.uint8))
+        got = 0
+        while got < nbytes:
+            n = self._raw.recv_into(view[got:])
+            if not n:
+                raise EOFError('the render process closed the connection mid-frame')
+            got += n
+        return view
+
     def send(self, message: Any) -> None:
         if self._gone:
             raise RenderError(self._gone)
@@ -198,7 +216,8 @@ class RenderProcess:
         return bool(self._replies) or self._gone is not None
 
     def receive(self, timeout: Optional[float] = RENDER_TIMEOUT) -> Reply:
-        """The next reply, ``('frame', data)`` or ``('error', text)``; waits up to ``timeout``."""
+        """The next reply, ``('frame', data)`` (a memoryview of the pixels) or ``('error', text)``;
+        waits up to ``timeout``."""
         with self._cond:
             self._cond.wait_for(lambda: self._replies or self._gone, timeout)
             if self._replies:
@@ -212,12 +231,8 @@ class RenderProcess:
         if kill and self.process.poll() is None:
             self.process.kill()
         try:  # wake the reader and the child; closing the fd under a reading thread would race
-            s = socket.socket(fileno=self._conn.fileno())
-            try:
-                s.shutdown(socket.SHUT_RDWR)
-            finally:
-                s.detach()
-        except (OSError, ValueError):
+            self._raw.shutdown(socket.SHUT_RDWR)
+        except OSError:
             pass
         try:
             self.process.wait(2.0)
@@ -225,4 +240,5 @@ class RenderProcess:
             self.process.kill()
             self.process.wait()
         self._reader.join(2.0)
+        self._raw.close()
         self._conn.close()

@@ -35,7 +35,7 @@ import logging
 import os
 import time
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, Iterable, List, Optional, Protocol
+from typing import Any, Callable, Dict, Iterable, List, Optional, Protocol, Union
 
 from .camera_sensor import CameraSensor
 from .limits import Limits
@@ -49,6 +49,7 @@ RESTART_DELAY = 0.5  # s of wall time before the first replacement; doubles with
 RENDER_NICENESS = 10  # default timing: rendering yields the CPU to the physics thread
 
 States = Callable[[], Dict[str, Any]]
+Pixels = Union[bytes, memoryview]  # a frame's image bytes, ``sensor.step`` per row
 
 
 class Renderer(Protocol):
@@ -96,7 +97,7 @@ class Camera:
         self.last_error: Optional[str] = None
         self.wants_image: Callable[[], bool] = _nobody
         self.wants_info: Callable[[], bool] = _nobody
-        self.on_image: Optional[Callable[[int, bytes], None]] = None
+        self.on_image: Optional[Callable[[int, Pixels], None]] = None
         self.on_info: Optional[Callable[[int], None]] = None
 
     def due(self, now_ns: int) -> bool:
@@ -114,7 +115,7 @@ class Camera:
             self.next_ns = now_ns + self.period_ns
         return True
 
-    def deliver(self, stamp_ns: int, data: bytes) -> None:
+    def deliver(self, stamp_ns: int, data: Pixels) -> None:
         self.frames += 1
         if self.on_image is not None:
             self.on_image(stamp_ns, data)

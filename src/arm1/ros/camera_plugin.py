@@ -17,7 +17,7 @@ import rospy
 from sensor_msgs.msg import CameraInfo, Image
 
 from ..physics.camera_sensor import CameraSensor, intrinsics
-from ..physics.sensor_manager import Camera
+from ..physics.sensor_manager import Camera, Pixels
 from .node_handle import to_time
 
 MAX_PENDING_IMAGES = 2  # frames waiting for the publishing thread; older ones are dropped
@@ -64,7 +64,7 @@ class GazeboRosCamera:
         self._image_pub = rospy.Publisher(sensor.image_topic, Image, queue_size=5)
         self._info_pub = rospy.Publisher(sensor.camera_info_topic, CameraInfo, queue_size=5)
         self._info = camera_info(sensor)
-        self._pending: Deque[Tuple[str, int, bytes]] = collections.deque()
+        self._pending: Deque[Tuple[str, int, Pixels]] = collections.deque()
         self._cond = threading.Condition()
         self._running = True
         self.dropped = 0  # frames the publishing thread was too slow for
@@ -77,7 +77,7 @@ class GazeboRosCamera:
         camera.on_info = self._queue_info
 
     # -- physics thread: hand over, never wait -------------------------------------------
-    def _queue_image(self, stamp_ns: int, data: bytes) -> None:
+    def _queue_image(self, stamp_ns: int, data: Pixels) -> None:
         with self._cond:
             images = [item for item in self._pending if item[0] == 'image']
             if len(images) >= MAX_PENDING_IMAGES:
@@ -109,7 +109,7 @@ class GazeboRosCamera:
                     return
                 raise
 
-    def publish_image(self, stamp_ns: int, data: bytes) -> None:
+    def publish_image(self, stamp_ns: int, data: Pixels) -> None:
         s = self.sensor
         msg = ChunkedImage(height=s.height, width=s.width, encoding=s.encoding, is_bigendian=0,
                            step=s.step, data=data)
