@@ -368,8 +368,10 @@ def test_spawning_a_6000x6000_camera_is_refused_and_leaves_nothing_behind(world_
 
 
 # --------------------------------------------------------------- failing render processes
-def test_a_dead_render_process_is_replaced_and_the_world_goes_on(caplog):
-    manager, made, clock = manager_with_fakes(2, render_ns=20 * STEP_NS, restart_delay=0.0)
+@pytest.mark.parametrize('lockstep', [False, True])
+def test_a_dead_render_process_is_replaced_and_the_world_goes_on(caplog, lockstep):
+    manager, made, clock = manager_with_fakes(2, lockstep, render_ns=20 * STEP_NS,
+                                              restart_delay=0.0)
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('eye', 'l', update_rate=30)])
     watched(cam)
     run(manager, clock, STEP_NS, 200 * STEP_NS)
