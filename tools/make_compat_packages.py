@@ -50,7 +50,7 @@ EMPTY_WORLD_ARGS = [('paused', 'false'), ('use_sim_time', 'true'), ('gui', 'true
                     ('headless', 'false'), ('debug', 'false'), ('verbose', 'false'),
                     ('physics', 'ode'), ('world_name', ''), ('respawn_gazebo', 'false'),
                     ('output', 'screen'), ('pub_clock_frequency', '100'),
-                    ('real_time_factor', ''), ('real_time_update_rate', '')]
+                    ('real_time_factor', ''), ('real_time_update_rate', ''), ('lockstep', 'false')]
 
 PACKAGES = {
     'gazebo_ros': ('Stand-in for gazebo_ros: empty_world.launch, spawn_model and gzserver on '

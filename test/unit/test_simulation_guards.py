@@ -177,3 +177,23 @@ def test_a_switch_waiting_when_its_model_is_deleted_fails_instead_of_hanging(
     sim.delete_model('arm1')
     waiter.join(2.0)
     assert result == [False]
+
+
+OFFSET_INERTIA = ('<robot name="plank"><link name="plank"><inertial><origin xyz="0.2 0 0"/>'
+                  '<mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" '
+                  'iyz="0"/></inertial><collision><geometry><box size="0.5 0.1 0.02"/></geometry>'
+                  '</collision></link></robot>')
+
+
+def test_a_base_link_with_an_offset_centre_of_mass_is_posed_and_reset_by_its_frame():
+    s = Simulation(WorldConfig(gravity=(0.0, 0.0, 0.0)))
+    try:
+        model = s.spawn_urdf('plank', OFFSET_INERTIA, position=(1.0, 2.0, 0.5))
+        pos, orn = model.robot.link_pose('plank')
+        assert pos == pytest.approx((1.0, 2.0, 0.5), abs=1e-6)
+        s.set_model_configuration('plank', [], [])
+        run(s, 10)
+        s.reset_world()
+        assert model.robot.link_pose('plank')[0] == pytest.approx((1.0, 2.0, 0.5), abs=1e-6)
+    finally:
+        s.close()

@@ -16,7 +16,11 @@ class Robot:
                                    flags=p.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
         except p.error as exc:
             raise RobotLoadError('pybullet could not build the robot (%s)' % exc)
-        self.initial_pose = (tuple(position), tuple(orientation))
+        # pybullet poses a base by its centre of mass: keep that pose (not the link frame's)
+        # for reset, and the link frame's offset from it for link_pose.
+        self.initial_pose = p.getBasePositionAndOrientation(self.body, physicsClientId=client)
+        inertial = p.getDynamicsInfo(self.body, -1, physicsClientId=client)[3:5]
+        self._base_from_com = p.invertTransform(*inertial)
         self.joint_index = {}
         self.link_index = {p.getBodyInfo(self.body, physicsClientId=client)[0].decode(): -1}
         for i in range(p.getNumJoints(self.body, physicsClientId=client)):
@@ -83,7 +87,8 @@ class Robot:
         """World position and quaternion of a link's frame."""
         i = self.link_index[link_name]
         if i == -1:
-            return p.getBasePositionAndOrientation(self.body, physicsClientId=self.client)
+            com = p.getBasePositionAndOrientation(self.body, physicsClientId=self.client)
+            return p.multiplyTransforms(*com, *self._base_from_com)
         s = p.getLinkState(self.body, i, computeForwardKinematics=True, physicsClientId=self.client)
         return s[4], s[5]
 
