@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generate the arm1 link meshes (binary STL, metres, each link's own frame).
 
-    python3 tools/generate_meshes.py [OUTPUT_DIR]      (default: <repo>/meshes)
+    tools/ws-run python tools/generate_meshes.py [OUTPUT_DIR]   (default: <repo>/meshes)
 
 The meshes are simple stand-ins for the SolidWorks export of the real arm:
 SG90-style micro servos (body, gear top, spline), U-shaped servo brackets,
@@ -12,8 +12,9 @@ mesh belongs to exactly two triangles. The bounding boxes follow the "Meshes"
 table of the arm1 reference; the joint origins the parts are placed from are
 those of urdf/arm1.urdf.xacro.
 
-Only numpy and the project's own STL writer (src/arm1/physics/stl.py) are
-used, and the output is deterministic: same bytes on every run.
+Only numpy and numpy-stl (through src/arm1/physics/stl.py, which fixes the
+header and the normals) are used, and the output is deterministic: same bytes
+on every run.
 """
 
 import math

@@ -1,6 +1,6 @@
 """The link meshes: size, closedness, and that meshes/ is what the generator makes.
 
-Plain python3 + numpy + pytest; no ROS.
+numpy, numpy-stl and pytest; no ROS (conftest puts src/ on the path).
 """
 
 import os
@@ -10,13 +10,11 @@ import sys
 import numpy as np
 import pytest
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(REPO_ROOT, 'src'))
+from arm1.paths import repo_path
+from arm1.physics.stl import read_stl, triangle_normals, write_binary_stl
 
-from arm1.physics.stl import read_binary_stl, triangle_normals, write_binary_stl  # noqa: E402
-
-MESH_DIR = os.path.join(REPO_ROOT, 'meshes')
-GENERATOR = os.path.join(REPO_ROOT, 'tools', 'generate_meshes.py')
+MESH_DIR = repo_path('meshes')
+GENERATOR = repo_path('tools', 'generate_meshes.py')
 
 # Bounding boxes of the original CAD meshes (reference arm1-model.md, "Meshes").
 REFERENCE_BBOX = {
@@ -37,7 +35,7 @@ def mesh_path(link):
 @pytest.fixture(scope='module', params=LINKS)
 def mesh(request):
     link = request.param
-    triangles, normals = read_binary_stl(mesh_path(link), with_normals=True)
+    triangles, normals = read_stl(mesh_path(link))
     return link, triangles, normals
 
 
@@ -101,7 +99,7 @@ def test_stl_round_trip(tmp_path):
         data = f.read()
     assert len(data) == 84 + 2 * 50
     assert data[:11] == b'test header'
-    back, normals = read_binary_stl(path, with_normals=True)
+    back, normals = read_stl(path)
     assert back.shape == (2, 3, 3)
     np.testing.assert_allclose(back, tri, atol=1e-7)
     np.testing.assert_allclose(normals, [[0, 0, 1], [0, 1, 0]], atol=1e-6)

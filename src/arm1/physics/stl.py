@@ -1,24 +1,31 @@
-"""Binary STL reading and writing (numpy + struct only; no ROS, no pybullet).
+"""STL files through numpy-stl: binary writing with unit normals and a fixed header, reading.
 
-A binary STL file is an 80-byte header, a little-endian uint32 triangle count
-and, per triangle, 12 float32 (normal, then the three vertices) and a uint16
-attribute word: 50 bytes a triangle.
+The project's meshes (tools/generate_meshes.py) must come out byte for byte the same on
+every run, so the header is ours (numpy-stl's default one carries the time of writing)
+and the stored normals are unit normals of the float32 vertices actually stored.
 """
+from __future__ import annotations
 
-import struct
+from struct import error as struct_error
+from typing import Tuple, Union
 
 import numpy as np
+import stl
+from numpy.typing import ArrayLike, NDArray
 
 HEADER_SIZE = 80
-_RECORD = np.dtype([
-    ('normal', '<f4', (3,)),
-    ('vertices', '<f4', (3, 3)),
-    ('attribute', '<u2'),
-])
-assert _RECORD.itemsize == 50
 
 
-def triangle_normals(triangles):
+class _FixedHeaderMesh(stl.Mesh):
+    """A Mesh whose binary header is ``header``, space-padded (no timestamp, no file name)."""
+
+    header = ''
+
+    def get_header(self, name: object) -> str:
+        return self.header.ljust(HEADER_SIZE, ' ')
+
+
+def triangle_normals(triangles: ArrayLike) -> NDArray[np.float64]:
     """Unit normals (N x 3, float64) of triangles (N x 3 x 3) from their
     winding: counter-clockwise seen from outside gives an outward normal.
     Degenerate triangles get a zero normal."""
@@ -31,49 +38,37 @@ def triangle_normals(triangles):
     return out
 
 
-def write_binary_stl(path, triangles, header=b''):
+def write_binary_stl(path: str, triangles: ArrayLike, header: Union[str, bytes] = b'') -> None:
     """Write ``triangles`` (N x 3 x 3, metres) to ``path`` as binary STL.
 
     Normals are computed from the vertex order (see :func:`triangle_normals`).
-    ``header`` (str or bytes, at most 80 bytes) is padded with spaces; it must
+    ``header`` (str or bytes, at most 80 ASCII bytes) is padded with spaces; it must
     not start with ``solid``, which would make readers take the file for ASCII
     STL. The output depends only on the arguments (same bytes every run)."""
     tri = np.asarray(triangles, dtype=np.float64).reshape(-1, 3, 3)
-    if isinstance(header, str):
-        header = header.encode('ascii')
-    header = bytes(header)
-    if len(header) > HEADER_SIZE:
+    text = header.decode('ascii') if isinstance(header, bytes) else header
+    text.encode('ascii')  # UnicodeEncodeError for a header no STL reader could show
+    if len(text) > HEADER_SIZE:
         raise ValueError('STL header longer than %d bytes' % HEADER_SIZE)
-    if header[:5].lower() == b'solid':
+    if text[:5].lower() == 'solid':
         raise ValueError("binary STL header must not start with 'solid'")
-    records = np.zeros(len(tri), dtype=_RECORD)
-    records['vertices'] = tri.astype('<f4')
-    # normals from the float32 vertices actually stored
-    records['normal'] = triangle_normals(records['vertices']).astype('<f4')
-    with open(path, 'wb') as f:
-        f.write(header.ljust(HEADER_SIZE, b' '))
-        f.write(struct.pack('<I', len(tri)))
-        f.write(records.tobytes())
+    data = np.zeros(len(tri), dtype=stl.Mesh.dtype)
+    data['vectors'] = tri.astype(np.float32)
+    # normals from the float32 vertices actually stored, unit length (numpy-stl's own
+    # update_normals leaves them scaled by twice the area)
+    data['normals'] = triangle_normals(data['vectors']).astype(np.float32)
+    out = _FixedHeaderMesh(data, calculate_normals=False)
+    out.header = text
+    out.save(path, mode=stl.Mode.BINARY, update_normals=False)
 
 
-def read_binary_stl(path, with_normals=False):
-    """Read a binary STL file.
-
-    Returns the triangles as a float64 array of shape (N, 3, 3) (triangle,
-    vertex, xyz), or ``(triangles, normals)`` with the stored normals (N x 3)
-    when ``with_normals`` is true. Raises ValueError for a file whose size does
-    not match its triangle count (e.g. an ASCII STL)."""
-    with open(path, 'rb') as f:
-        data = f.read()
-    if len(data) < HEADER_SIZE + 4:
-        raise ValueError('%s: too short for a binary STL file' % path)
-    (count,) = struct.unpack_from('<I', data, HEADER_SIZE)
-    expected = HEADER_SIZE + 4 + count * _RECORD.itemsize
-    if len(data) != expected:
-        raise ValueError('%s: not a binary STL file (%d bytes, %d expected for %d triangles)'
-                         % (path, len(data), expected, count))
-    records = np.frombuffer(data, dtype=_RECORD, count=count, offset=HEADER_SIZE + 4)
-    triangles = records['vertices'].astype(np.float64)
-    if with_normals:
-        return triangles, records['normal'].astype(np.float64)
-    return triangles
+def read_stl(path: str) -> Tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Triangles (N x 3 x 3, float64; triangle, vertex, xyz) and their stored normals
+    (N x 3) of an STL file, binary or ASCII; what numpy-stl finds malformed is a
+    ValueError naming the file."""
+    try:
+        loaded = stl.Mesh.from_file(path, calculate_normals=False)
+    except (AssertionError, RuntimeError, ValueError, struct_error) as exc:
+        raise ValueError('%s: not an STL file (%s)' % (path, exc)) from None
+    return (np.asarray(loaded.vectors, dtype=np.float64),
+            np.asarray(loaded.normals, dtype=np.float64))
