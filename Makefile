@@ -29,10 +29,11 @@ APT_PACKAGES := \
   python3-rospy python3-roslaunch python3-rostest python3-rosunit rosbash \
   catkin rosout ros-robot-state-publisher joint-state-publisher \
   python3-std-msgs python3-sensor-msgs python3-std-srvs python3-geometry-msgs \
-  python3-rosgraph-msgs \
+  python3-rosgraph-msgs python3-trajectory-msgs python3-actionlib-msgs \
   ros-std-msgs libstd-msgs-dev ros-geometry-msgs libgeometry-msgs-dev \
   ros-sensor-msgs libsensor-msgs-dev ros-std-srvs libstd-srvs-dev \
   ros-rosgraph-msgs libros-rosgraph-msgs-dev \
+  ros-trajectory-msgs libtrajectory-msgs-dev ros-actionlib-msgs libactionlib-msgs-dev \
   python3-dynamic-reconfigure libdynamic-reconfigure-config-init-mutex-dev \
   ros-message-generation ros-message-runtime \
   python3-rosservice python3-rostopic python3-rosparam python3-rosnode \
@@ -47,7 +48,8 @@ APT_PACKAGES := \
 BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/cfg/*.cfg $(ROOT)/env-hooks/*) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
-  $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py
+  $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py \
+  $(wildcard $(ROOT)/tools/compat_msgs/*/*/*)
 
 .PHONY: setup venv build demo test bench soak clean link-package
 
@@ -124,7 +126,8 @@ link-package:
 	for l in *; do \
 	  if [ -L "$$l" ] && [ ! -e "$$l" ]; then rm -f "$$l"; fi; \
 	done
-	@# gazebo_ros, controller_manager and xacro stand-ins: packages of their own beside arm1.
+	@# gazebo_ros, controller_manager and xacro stand-ins, and gazebo_msgs, control_msgs and
+	@# controller_manager_msgs (from tools/compat_msgs): packages of their own beside arm1.
 	@$(SYS_PY) $(ROOT)/tools/make_compat_packages.py $(WS)/src
 
 #    Built with the venv python, so the devel-space relays of scripts/*
