@@ -1,11 +1,11 @@
 """Raw 8-bit images as sensor_msgs/Image carries them (data, width, height, step, encoding).
 
-ROS-free and numpy-only (rostest nodes run on the system python, without pybullet).
+ROS-free: numpy, and Pillow to write PNG files.
 """
-import struct
-import zlib
+import io
 
 import numpy as np
+from PIL import Image
 
 
 def is_uniform(data, width, height, step):
@@ -22,22 +22,18 @@ def is_uniform(data, width, height, step):
     return bool((pixels == pixels[0]).all())
 
 
-# PNG colour type and channels of the encodings png() can write
-PNG_TYPES = {'rgb8': (2, 3), 'bgr8': (2, 3), 'mono8': (0, 1), 'rgba8': (6, 4), 'bgra8': (6, 4)}
+# Channels of the encodings png() can write (as PNG RGB, grey and RGBA)
+PNG_TYPES = {'rgb8': 3, 'bgr8': 3, 'mono8': 1, 'rgba8': 4, 'bgra8': 4}
 
 
-def png(data, width, height, step, encoding):
-    """A PNG file's bytes of a raw 8-bit image (as in sensor_msgs/Image)."""
-    kind, channels = PNG_TYPES[encoding]
+def png(data: bytes, width: int, height: int, step: int, encoding: str) -> bytes:
+    """A PNG file's bytes of a raw 8-bit image (as in sensor_msgs/Image), written by Pillow."""
+    channels = PNG_TYPES[encoding]
     rows = np.frombuffer(data, np.uint8, count=height * step).reshape(height, step)
     px = rows[:, :width * channels].reshape(height, width, channels)
     if encoding.startswith('bgr'):
         px = px[:, :, [2, 1, 0, 3][:channels]]
-    raw = np.concatenate([np.zeros((height, 1), np.uint8), px.reshape(height, -1)], axis=1)
-
-    def chunk(tag, body):
-        return (struct.pack('>I', len(body)) + tag + body
-                + struct.pack('>I', zlib.crc32(tag + body) & 0xffffffff))
-    return (b'\x89PNG\r\n\x1a\n'
-            + chunk(b'IHDR', struct.pack('>IIBBBBB', width, height, 8, kind, 0, 0, 0))
-            + chunk(b'IDAT', zlib.compress(raw.tobytes())) + chunk(b'IEND', b''))
+    out = io.BytesIO()
+    pixels = px.reshape(height, width) if channels == 1 else px  # Pillow: 2-D is grey
+    Image.fromarray(np.ascontiguousarray(pixels)).save(out, 'PNG')
+    return out.getvalue()

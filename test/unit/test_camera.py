@@ -1,4 +1,5 @@
 """physics/camera.py: camera sensors from the URDF, their geometry, scheduling and rendering."""
+import io
 import math
 import os
 import signal
@@ -9,6 +10,7 @@ import zlib
 import numpy as np
 import pybullet as p
 import pytest
+from PIL import Image
 
 from arm1.image import is_uniform, png
 from arm1.pacer import Pacer
@@ -559,7 +561,8 @@ def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(world_sim
 
 
 def decode_png(data):
-    """(width, height, colour type, rows of pixel bytes) of a PNG made by png()."""
+    """(width, height, colour type, rows of pixel bytes) of a PNG made by png(): chunks and
+    header read here, the (filtered, compressed) pixels decoded by Pillow."""
     assert data[:8] == b'\x89PNG\r\n\x1a\n'
     chunks, pos = {}, 8
     while pos < len(data):
@@ -569,10 +572,11 @@ def decode_png(data):
         chunks[tag] = body
         pos += 12 + n
     w, h, depth, kind = struct.unpack('>IIBB', chunks[b'IHDR'][:10])
-    raw = zlib.decompress(chunks[b'IDAT'])
-    stride = len(raw) // h
-    assert depth == 8 and all(raw[r * stride] == 0 for r in range(h))  # filter: none
-    return w, h, kind, [raw[r * stride + 1:(r + 1) * stride] for r in range(h)]
+    assert depth == 8
+    with Image.open(io.BytesIO(data)) as image:
+        pixels = np.asarray(image)
+    assert pixels.shape[:2] == (h, w)
+    return w, h, kind, [pixels[r].tobytes() for r in range(h)]
 
 
 def test_snapshot_png_of_a_frame():
