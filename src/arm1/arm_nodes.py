@@ -1,7 +1,7 @@
 """What arm_mover and look_away decide, free of ROS (the nodes: ros/arm_mover.py, look_away.py)."""
 import math
 
-from .physics.urdf_model import parse_urdf
+from .description.urdf_model import parse_urdf
 
 
 # ------------------------------------------------------------------- arm_mover

@@ -13,12 +13,13 @@ from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from .control.controller_manager import ControllerManager
-from .physics.camera import Camera, CameraSensor, SensorManager, camera_sensors
-from .physics.limits import LimitError
-from .physics.names import IllegalName, check_name, shown
+from .description.camera_sensor import CameraSensor, camera_sensors
+from .description.limits import LimitError
+from .description.names import IllegalName, check_name, shown
 from .physics.robot import Robot, RobotLoadError
-from .physics.sdf_world import WorldConfig
-from .physics.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
+from .physics.sensor_manager import Camera, SensorManager
+from .description.sdf_world import WorldConfig
+from .description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
 from .physics.world import World
 from .robot_hw_sim import DefaultRobotHWSim
 

@@ -1,4 +1,4 @@
-"""physics/camera.py: camera sensors from the URDF, their geometry, scheduling and rendering."""
+"""Cameras: sensors from the URDF (description.camera_sensor), their geometry, scheduling and rendering."""
 import io
 import math
 import os
@@ -15,11 +15,13 @@ from PIL import Image
 from arm1.image import is_uniform, png
 from arm1.pacer import Pacer
 from arm1.physics import sensor_manager
-from arm1.physics.camera import (Camera, CameraSensor, RenderError, SensorManager,
-                                 camera_sensors, encode, intrinsics, render, view_matrix)
-from arm1.physics.limits import LimitError, Limits
-from arm1.physics.sdf_world import WorldConfig, read_world
-from arm1.physics.urdf_model import UrdfError, parse_urdf
+from arm1.description.camera_sensor import CameraSensor, camera_sensors
+from arm1.physics.camera_geometry import intrinsics, view_matrix
+from arm1.physics.render_process import RenderError, encode, render
+from arm1.physics.sensor_manager import Camera, SensorManager
+from arm1.description.limits import LimitError, Limits
+from arm1.description.sdf_world import WorldConfig, read_world
+from arm1.description.urdf_model import UrdfError, parse_urdf
 from arm1.simulation import Simulation, SpawnError
 from conftest import WORLD_FILE, box_link
 

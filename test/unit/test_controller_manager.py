@@ -6,7 +6,7 @@ import pytest
 
 from arm1.control.controller_manager import (BEST_EFFORT, STRICT, ControllerManager,
                                              ControllerManagerError)
-from arm1.physics.urdf_model import parse_urdf
+from arm1.description.urdf_model import parse_urdf
 from arm1.robot_hw_sim import DefaultRobotHWSim
 from conftest import JPC, JSC, MIXED_URDF, FakeRobot, FakeRos, pump_switch
 

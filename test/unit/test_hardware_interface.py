@@ -6,7 +6,7 @@ import pytest
 from arm1.control.controller import ControllerError
 from arm1.control.hardware_interface import (EFFORT_JOINT_INTERFACE, JointLimits,
                                              canonical_interface, enforce_effort_limits)
-from arm1.physics.urdf_model import parse_urdf
+from arm1.description.urdf_model import parse_urdf
 from arm1.robot_hw_sim import DefaultRobotHWSim
 from conftest import MIXED_URDF, FakeRobot
 

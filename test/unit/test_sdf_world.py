@@ -1,8 +1,8 @@
 """physics/sdf_world.py: what a Gazebo world file gives the pybullet world."""
 import pytest
 
-from arm1.physics.limits import Limits
-from arm1.physics.sdf_world import SdfError, WorldConfig, parse_world, read_world
+from arm1.description.limits import Limits
+from arm1.description.sdf_world import SdfError, WorldConfig, parse_world, read_world
 from conftest import WORLD_FILE
 
 

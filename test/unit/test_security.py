@@ -6,11 +6,11 @@ import time
 
 import pytest
 
-from arm1.physics import safe_xml
-from arm1.physics.limits import LimitError, Limits
-from arm1.physics.mesh_limits import MeshError, count_triangles
+from arm1.description import safe_xml
+from arm1.description.limits import LimitError, Limits
+from arm1.description.mesh_limits import MeshError, count_triangles
 from arm1.physics.stl import write_binary_stl
-from arm1.physics.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
+from arm1.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
 
 LAUGHS = ('<?xml version="1.0"?><!DOCTYPE robot [<!ENTITY lol "lol">'
           + ''.join('<!ENTITY lol%d "%s">' % (i, ('&lol%s;' % (i - 1 if i > 1 else '')) * 10)

@@ -8,7 +8,7 @@ import time
 import pytest
 
 from arm1.control.controller_manager import STRICT, ControllerManager
-from arm1.physics.sdf_world import WorldConfig, read_world
+from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.simulation import Simulation, SpawnError
 from conftest import (JPC, MIXED_URDF, WORLD_FILE, FakeRos, box_link, control_plugin,
                       mixed_params, transmission)

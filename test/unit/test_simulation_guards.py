@@ -9,8 +9,8 @@ import threading
 import pytest
 
 from arm1.control.controller_manager import ControllerManager
-from arm1.physics.limits import Limits
-from arm1.physics.sdf_world import WorldConfig, read_world
+from arm1.description.limits import Limits
+from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.simulation import Simulation, SpawnError
 from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, pump_switch
 

@@ -5,9 +5,9 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE
-from arm1.physics.limits import LimitError, Limits
+from arm1.description.limits import LimitError, Limits
 from arm1.physics.stl import write_binary_stl
-from arm1.physics.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
+from arm1.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
 from conftest import MIXED_URDF, REPO_ROOT, box_link, control_plugin, transmission
 
 ARM1_LIMITS = {

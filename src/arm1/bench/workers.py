@@ -49,7 +49,7 @@ def bare(seconds):
     """Read joints, PID, apply torques, step: the same robot without ROS or our classes."""
     import tempfile
     import pybullet as p
-    from ..physics.urdf_model import resolve_mesh_uris
+    from ..description.urdf_model import resolve_mesh_uris
     from ..ros.packages import find_package
     xml = resolve_mesh_uris(arm1_urdf(), find_package)
     with tempfile.NamedTemporaryFile('w', suffix='.urdf', delete=False) as f:

@@ -32,7 +32,8 @@ from typing import Any, Dict, Optional, Sequence, Tuple
 import numpy as np
 import pybullet as p
 
-from .camera_sensor import CameraSensor, projection_matrix, sensor_pose, view_matrix
+from ..description.camera_sensor import CameraSensor
+from .camera_geometry import projection_matrix, sensor_pose, view_matrix
 from .world import World
 
 log = logging.getLogger('arm1.physics')

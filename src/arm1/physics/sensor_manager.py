@@ -37,8 +37,8 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Iterable, List, Optional, Protocol, Union
 
-from .camera_sensor import CameraSensor
-from .limits import Limits
+from ..description.camera_sensor import CameraSensor
+from ..description.limits import Limits
 from .render_process import RenderError, RenderProcess, Reply, render_timeout
 
 log = logging.getLogger('arm1.physics')

@@ -16,7 +16,8 @@ from typing import Any, Deque, Tuple
 import rospy
 from sensor_msgs.msg import CameraInfo, Image
 
-from ..physics.camera_sensor import CameraSensor, intrinsics
+from ..description.camera_sensor import CameraSensor
+from ..physics.camera_geometry import intrinsics
 from ..physics.sensor_manager import Camera, Pixels
 from .node_handle import to_time
 

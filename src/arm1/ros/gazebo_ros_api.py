@@ -13,7 +13,7 @@ from std_srvs.srv import Empty
 
 from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
 
-from ..physics.names import shown
+from ..description.names import shown
 from ..simulation import Model, PreparedUrdf, Simulation, SpawnError
 from .camera_plugin import GazeboRosCamera
 from .controller_manager_services import ControllerManagerServices

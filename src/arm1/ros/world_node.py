@@ -12,8 +12,8 @@ from typing import List, Optional, Sequence, Tuple
 import rospy
 
 from ..pacer import Pacer, wall_period
-from ..physics.limits import LimitError, Limits
-from ..physics.sdf_world import SdfError, WorldConfig, read_world
+from ..description.limits import LimitError, Limits
+from ..description.sdf_world import SdfError, WorldConfig, read_world
 from ..simulation import Model, Simulation
 from .gazebo_ros_api import GazeboRosApi
 from .master_watch import MasterWatch

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 from ..control.controller_manager import STRICT, ControllerManager
 from ..control.joint_position_controller import JointPositionController
-from ..physics.sdf_world import WorldConfig, read_world
+from ..description.sdf_world import WorldConfig, read_world
 from ..simulation import Simulation
 from .local_ros import LocalRos
 from .metrics import FINAL_WINDOW, step_metrics
@@ -122,7 +122,7 @@ class StepRig:
             raise
 
     def _spawn(self, urdf_xml, find_package, model_name):
-        from ..physics.urdf_model import parse_urdf
+        from ..description.urdf_model import parse_urdf
         name = model_name or parse_urdf(urdf_xml).name or 'robot'
         self.model = self.sim.spawn_urdf(
             name, urdf_xml, find_package=find_package,
