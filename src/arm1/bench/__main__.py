@@ -3,17 +3,22 @@
 Writes bench/results.json, the table in BENCHMARKS.md and bench/bench.png.
 ``--quick`` runs each measurement once and briefly (the smoke test in ``make test``).
 """
+from __future__ import annotations
+
 import argparse
 import json
 import os
-import platform
 import statistics
 import subprocess
 import sys
-import time
+from typing import Any, Dict, List, Optional, Tuple
 
+from tqdm import tqdm
+
+from ..launcher import RosSession
+from ..paths import repo_root
+from .probes import machine
 from .report import write_markdown, write_plot
-from .workers import ROOT
 
 # (key, worker kind, worker args, runs, quick args, quick runs)
 PLAN = [
@@ -33,25 +38,17 @@ PLAN = [
 NEEDS_MASTER = {'standin', 'latency'}  # they run the world in-process against a shared master
 
 
-def progress(done, total, label, width=30):
-    filled = int(width * done / total)
-    sys.stdout.write('\r[%s%s] %2d/%d %-40s' % ('#' * filled, '.' * (width - filled), done, total,
-                                                 label))
-    sys.stdout.flush()
-
-
-def run_worker(kind, args, env):
+def run_worker(kind: str, args: List[str], env: Dict[str, str]) -> Dict[str, Any]:
     proc = subprocess.run([sys.executable, '-m', 'arm1.bench.workers', kind] + args, env=env,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=600)
-    lines = [l for l in proc.stdout.splitlines() if l.startswith('{')]
+    lines = [ln for ln in proc.stdout.splitlines() if ln.startswith('{')]
     if proc.returncode != 0 or not lines:
         raise RuntimeError('bench worker %s %s failed (exit %d):\n%s' % (
             kind, ' '.join(args), proc.returncode, proc.stderr[-3000:]))
     return json.loads(lines[-1])
 
 
-def start_master(env):
-    from ..launcher import RosSession
+def start_master(env: Dict[str, str]) -> RosSession:
     session = RosSession()
     env['ROS_MASTER_URI'] = session.env['ROS_MASTER_URI']
     session.start('rosmaster', '--core', '-p', session.env['ROS_MASTER_URI'].rsplit(':', 1)[1])
@@ -60,7 +57,7 @@ def start_master(env):
     return session
 
 
-def summarise(samples):
+def summarise(samples: List[Dict[str, Any]]) -> Dict[str, Dict[str, float]]:
     """Median and spread (min, max) of every numeric field over the runs."""
     out = {}
     for key in samples[0]:
@@ -71,54 +68,63 @@ def summarise(samples):
     return out
 
 
-def machine():
-    model = ''
-    try:
-        with open('/proc/cpuinfo') as f:
-            model = next((l.split(':', 1)[1].strip() for l in f if l.startswith('model name')), '')
-    except OSError:
-        pass
-    import pybullet
-    return {'cpu': model, 'cores': os.cpu_count(), 'python': platform.python_version(),
-            'kernel': platform.release(), 'pybullet': getattr(pybullet, '__version__', '3.2.7'),
-            'date': time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}
+Plan = List[Tuple[str, str, List[str], int]]  # (key, worker kind, worker args, runs)
+Raw = Dict[str, List[Dict[str, Any]]]  # key -> each run's result
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument('--quick', action='store_true', help='one short run of each (smoke)')
-    parser.add_argument('--out', default=ROOT, help='where bench/ and BENCHMARKS.md go')
-    args = parser.parse_args(argv)
-    plan = [(key, kind, qargs if args.quick else full, qruns if args.quick else runs)
-            for key, kind, full, runs, qargs, qruns in PLAN if not (args.quick and not qruns)]
-    total = sum(runs for *_, runs in plan)
+def plan_for(quick: bool) -> Plan:
+    return [(key, kind, (qargs if quick else full) or [], qruns if quick else runs)
+            for key, kind, full, runs, qargs, qruns in PLAN if not (quick and not qruns)]
+
+
+def run_plan(plan: Plan) -> Raw:
+    """Every run of the plan, each worker in a process of its own, against one master."""
     env = dict(os.environ)
     master = start_master(env)
-    raw, done = {}, 0
+    raw: Raw = {}
     try:
-        for key, kind, wargs, runs in plan:
-            for k in range(runs):
-                progress(done, total, '%s run %d/%d' % (key, k + 1, runs))
-                raw.setdefault(key, []).append(run_worker(kind, wargs, env))
-                done += 1
-        progress(done, total, 'done')
-        print()
+        with tqdm(total=sum(runs for *_, runs in plan), unit='run', file=sys.stdout,
+                  dynamic_ncols=True) as bar:
+            for key, kind, wargs, runs in plan:
+                for k in range(runs):
+                    bar.set_description('%s run %d/%d' % (key, k + 1, runs))
+                    raw.setdefault(key, []).append(run_worker(kind, wargs, env))
+                    bar.update()
+            bar.set_description('done')
     finally:
         master.stop()
-    results = {'machine': machine(), 'quick': args.quick,
-               'figures': {key: summarise(samples) for key, samples in raw.items()}, 'raw': raw}
-    fig = results['figures']
+    return raw
+
+
+def figures(raw: Raw) -> Dict[str, Dict[str, Any]]:
+    """Each key's summary, and the figures derived from several: speed ratio, camera cost."""
+    fig: Dict[str, Dict[str, Any]] = {key: summarise(samples) for key, samples in raw.items()}
     one = fig['standin_1']['steps_per_s']['median']
     fig['speed_ratio'] = {'median': one / fig['bare']['steps_per_s']['median']}
     if 'standin_camera' in fig:  # wall time a 30 Hz frame adds to each simulated second
         cam = fig['standin_camera']['steps_per_s']['median']
         fig['camera_frame_ms'] = {'median': (1000.0 / cam - 1000.0 / one) / 30 * 1000}
-    os.makedirs(os.path.join(args.out, 'bench'), exist_ok=True)
-    with open(os.path.join(args.out, 'bench', 'results.json'), 'w') as f:
+    return fig
+
+
+def write_results(results: Dict[str, Any], out: str) -> str:
+    """bench/results.json, BENCHMARKS.md and bench/bench.png under ``out``; returns the table."""
+    os.makedirs(os.path.join(out, 'bench'), exist_ok=True)
+    with open(os.path.join(out, 'bench', 'results.json'), 'w') as f:
         json.dump(results, f, indent=1, sort_keys=True)
-    table = write_markdown(results, os.path.join(args.out, 'BENCHMARKS.md'))
-    write_plot(results, os.path.join(args.out, 'bench', 'bench.png'))
-    print(table)
+    table = write_markdown(results, os.path.join(out, 'BENCHMARKS.md'))
+    write_plot(results, os.path.join(out, 'bench', 'bench.png'))
+    return table
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=(__doc__ or '').splitlines()[0])
+    parser.add_argument('--quick', action='store_true', help='one short run of each (smoke)')
+    parser.add_argument('--out', default=repo_root(), help='where bench/ and BENCHMARKS.md go')
+    args = parser.parse_args(argv)
+    raw = run_plan(plan_for(args.quick))
+    results = {'machine': machine(), 'quick': args.quick, 'figures': figures(raw), 'raw': raw}
+    print(write_results(results, args.out))
     return 0
 
 

@@ -1,5 +1,8 @@
 """The benchmark's table (BENCHMARKS.md) and plot (bench/bench.png) from results.json's data."""
+from __future__ import annotations
+
 import os
+from typing import Any, Dict, Iterator, Optional, Tuple
 
 # (label, figure, field, goal text, check(median) -> bool or None, format)
 ROWS = [
@@ -31,7 +34,10 @@ ROWS = [
 ]
 
 
-def rows(results):
+Results = Dict[str, Any]  # results.json: machine, quick, figures, raw
+
+
+def rows(results: Results) -> Iterator[Tuple[str, str, str, str, str]]:
     fig = results['figures']
     for label, key, field, goal, check, fmt in ROWS:
         if key not in fig:
@@ -46,13 +52,13 @@ def rows(results):
         yield label, fmt % median, spread, goal, verdict
 
 
-def table(results):
+def table(results: Results) -> str:
     lines = ['| figure | median | spread | goal | |', '|---|---|---|---|---|']
     lines += ['| %s | %s | %s | %s | %s |' % r for r in rows(results)]
     return '\n'.join(lines)
 
 
-def write_markdown(results, path):
+def write_markdown(results: Results, path: str) -> str:
     m = results['machine']
     text = table(results)
     from .soak import existing_section
@@ -76,16 +82,19 @@ def write_markdown(results, path):
     return text
 
 
-def unmet_section(results):
+def unmet_section(results: Results) -> str:
     """Why a goal is not met, with this run's own figures."""
     fig = results['figures']
-    med = lambda key, field: fig[key][field]['median'] if key in fig and field in fig[key] else None
+
+    def med(key: str, field: str) -> Optional[float]:
+        return fig[key][field]['median'] if key in fig and field in fig[key] else None
     out = []
     ratio = fig.get('speed_ratio', {}).get('median')
     bare, standin = med('bare', 'steps_per_s'), med('standin_1', 'steps_per_s')
     if ratio is not None and ratio < 0.6 and bare and standin:
         out.append(
-            '- **Speed ratio %.2f (goal 0.6).** A bare step takes %.1f µs, a stand-in step %.1f µs. '
+            '- **Speed ratio %.2f (goal 0.6).** A bare step takes %.1f µs, '
+            'a stand-in step %.1f µs. '
             'The difference is Python doing what ros_control does: four controller objects with '
             'a control_toolbox PID each, effort saturation per joint, the hardware interface '
             'and the controller manager: about %.1f µs more per joint per step in CPython than '
@@ -106,14 +115,14 @@ def unmet_section(results):
             'finds cold caches, and every /clock goes out to each subscriber. '
             'Running two steps per wake-up would cut the wake-ups but hold a command up to a '
             'step longer, against the 2 ms latency goal, so the world keeps one step per '
-            'wake-up.' % (cpu, floor, wake, (cpu - floor) * 1000, 1e6 / standin if standin
-                          else float('nan')))
+            'wake-up.' % (cpu, floor, float('nan') if wake is None else wake,
+                          (cpu - floor) * 1000, 1e6 / standin if standin else float('nan')))
     if not out:
         return ''
     return '\n## Goals not met, and why\n\n' + '\n'.join(out) + '\n'
 
 
-def profile_section(results):
+def profile_section(results: Results) -> str:
     """Where the stand-in's step goes, from the profiled top-speed run."""
     runs = results['raw'].get('profile')
     if not runs:
@@ -152,7 +161,7 @@ METHOD = '''
 '''
 
 
-def write_plot(results, path):
+def write_plot(results: Results, path: str) -> None:
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt

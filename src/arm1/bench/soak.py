@@ -16,7 +16,7 @@ import threading
 import time
 from typing import Dict, List, Optional, Tuple
 
-from .workers import ROOT
+from ..paths import repo_root
 
 RTF_TOLERANCE = 0.001     # the goal: sim time within 0.1 % of wall time
 RSS_GROWTH_LIMIT = 0.05   # the goal: world RSS grows less than 5 % after the warm-up
@@ -350,9 +350,9 @@ def source_state() -> str:
     """The commit the run used, and whether src/ differed from it (others may be mid-change)."""
     import subprocess
     try:
-        head = subprocess.run(['git', '-C', ROOT, 'rev-parse', '--short', 'HEAD'],
+        head = subprocess.run(['git', '-C', repo_root(), 'rev-parse', '--short', 'HEAD'],
                               capture_output=True, text=True, check=True).stdout.strip()
-        dirty = subprocess.run(['git', '-C', ROOT, 'status', '--porcelain', 'src', 'scripts',
+        dirty = subprocess.run(['git', '-C', repo_root(), 'status', '--porcelain', 'src', 'scripts',
                                 'launch', 'urdf', 'worlds', 'config'],
                                capture_output=True, text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
@@ -419,7 +419,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser.add_argument('--warmup', type=float, default=None,
                         help='wall seconds left out of the goals (default 60, or a quarter '
                              'of a shorter run)')
-    parser.add_argument('--out', default=ROOT, help='where bench/ and BENCHMARKS.md go')
+    parser.add_argument('--out', default=repo_root(), help='where bench/ and BENCHMARKS.md go')
     args = parser.parse_args(argv)
     if args.minutes <= 0:
         parser.error('--minutes must be positive, not %g' % args.minutes)
@@ -437,7 +437,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     fig = judge(samples, warmup)
     lines = summary_lines(fig, minutes)
     print('\n'.join(lines))
-    from .__main__ import machine
+    from .probes import machine
     result = {'machine': machine(), 'minutes_asked': args.minutes, 'stopped_early': why,
               'source': source,
               'figures': fig, 'minutes': minutes, 'samples': samples}

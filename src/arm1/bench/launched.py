@@ -1,0 +1,67 @@
+"""The real launch (``roslaunch arm1 gazebo.launch gui:=false``), watched from outside."""
+from __future__ import annotations
+
+import time
+from typing import Any, Dict
+
+from .probes import cpu_seconds, peak_rss_mb
+
+PROBE = '/bench_probe'
+
+
+def _launch_and_wait(session: Any, timeout: float = 60) -> None:
+    import rospy
+    session.roslaunch('arm1', 'gazebo.launch', 'gui:=false')
+    if not session.wait_for_master(timeout):
+        raise RuntimeError('master did not start')
+    rospy.init_node(PROBE.lstrip('/'), anonymous=True, disable_signals=True)
+
+
+def startup() -> Dict[str, Any]:
+    """Wall seconds from starting roslaunch to the first /arm1/joint_states (master included)."""
+    import rospy
+
+    from ..launcher import RosSession
+    session = RosSession()
+    session.activate()
+    with session:
+        t0 = time.time()
+        _launch_and_wait(session)
+        msg = rospy.wait_for_message('/arm1/joint_states', rospy.AnyMsg, timeout=60)
+        t1 = time.time()
+        rospy.signal_shutdown('measured')
+    return {'startup_s': t1 - t0, 'ok': msg is not None}
+
+
+def realtime(seconds: float) -> Dict[str, float]:
+    """At real_time_factor 1: measured RTF, joint_states rate in sim time, the world's CPU
+    and peak RSS."""
+    import rospy
+    from rosgraph_msgs.msg import Clock
+    from sensor_msgs.msg import JointState
+
+    from ..launcher import RosSession, node_pid
+    session = RosSession()
+    session.activate()
+    with session:
+        _launch_and_wait(session)
+        clock, stamps = [], []
+        rospy.Subscriber('/clock', Clock, lambda m: clock.append((time.perf_counter(),
+                                                                  m.clock.to_sec())))
+        rospy.Subscriber('/arm1/joint_states', JointState,
+                         lambda m: stamps.append(m.header.stamp.to_sec()), queue_size=100)
+        rospy.wait_for_message('/arm1/joint_states', JointState, timeout=60)
+        time.sleep(2.0)
+        world = [node_pid('/gazebo', caller=PROBE)]
+        cpu0 = cpu_seconds(world)
+        w0, c0, n0 = time.perf_counter(), clock[-1], len(stamps)
+        time.sleep(seconds)
+        w1, c1, n1 = time.perf_counter(), clock[-1], len(stamps)
+        cpu1 = cpu_seconds(world)
+        rss = sum(peak_rss_mb(p) for p in world)
+        window = stamps[n0:n1]
+        rospy.signal_shutdown('measured')
+    return {'rtf': (c1[1] - c0[1]) / (c1[0] - c0[0]),
+            'joint_states_hz': (len(window) - 1) / (window[-1] - window[0]),
+            'cpu_core_fraction': (cpu1 - cpu0) / (w1 - w0), 'peak_rss_mb': rss,
+            'seconds': w1 - w0}

@@ -1,0 +1,50 @@
+"""What a process costs (psutil), and what machine the benchmark ran on."""
+from __future__ import annotations
+
+import platform
+import time
+from typing import Dict, Iterable
+
+import psutil
+
+
+def cpu_seconds(pids: Iterable[int]) -> float:
+    """User + system CPU seconds the processes have used so far (their threads included)."""
+    total = 0.0
+    for pid in pids:
+        times = psutil.Process(pid).cpu_times()
+        total += times.user + times.system
+    return total
+
+
+def peak_rss_mb(pid: int) -> float:
+    """The process's peak resident memory (MB) since it started: the kernel's VmHWM.
+
+    psutil has no peak RSS on Linux (giampaolo/psutil#1096, open), and sampling the current
+    RSS would miss the start-up peak, so this one field is read from /proc itself.
+    """
+    with open('/proc/%d/status' % pid) as f:
+        for line in f:
+            if line.startswith('VmHWM:'):
+                return int(line.split()[1]) / 1024.0
+    return float('nan')
+
+
+def cpu_model() -> str:
+    """The CPU's model name ('' if unknown); psutil does not report it."""
+    try:
+        with open('/proc/cpuinfo') as f:
+            return next((ln.split(':', 1)[1].strip() for ln in f
+                         if ln.startswith('model name')), '')
+    except OSError:
+        return ''
+
+
+def machine() -> Dict[str, object]:
+    """CPU, cores, Python, kernel, pybullet and date, for the report's header."""
+    import pybullet
+    return {'cpu': cpu_model(), 'cores': psutil.cpu_count(), 'python': platform.python_version(),
+            'kernel': platform.release(), 'pybullet': getattr(pybullet, '__version__', '3.2.7'),
+            'date': time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}
+
+
