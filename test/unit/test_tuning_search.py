@@ -10,8 +10,12 @@ import os
 import yaml
 
 from arm1.tuning import cli
+from arm1.tuning.inputs import Setup, parse_pose
 from arm1.tuning.metrics import Criteria, StepMetrics
+from arm1.tuning.report import verdict
+from arm1.tuning.save import with_gains
 from arm1.tuning.search import UNSTEADY, Evaluator, GainSearch, SearchSpace, score
+from arm1.tuning.session import measure_all
 from arm1.tuning.steps import StepRig
 from conftest import REPO_ROOT
 
@@ -37,7 +41,7 @@ def scores(rig, gains, joints, protocol, criteria):
 
 def search_arm1(arm1_urdf, params, tuned, generations, population):
     """(search, found gains, seed gains, all joints) of a search over ``tuned`` joints."""
-    setup = cli.Setup(cli.parse_args([]))
+    setup = Setup(cli.parse_args([]))
     make = lambda: StepRig(arm1_urdf, params, setup.world, find)  # noqa: E731
     evaluator = Evaluator(make, workers=2)
     try:
@@ -57,7 +61,7 @@ def search_arm1(arm1_urdf, params, tuned, generations, population):
 def test_search_result_holds_up_in_an_independent_run(arm1_urdf, controllers_params):
     setup, search, found, seed, joints = search_arm1(arm1_urdf, controllers_params, None, 4, 8)
     # independent: a fresh simulation whose controllers load the found gains from parameters
-    params = cli.with_gains(controllers_params, '/arm1', NAMES(joints), found)
+    params = with_gains(controllers_params, '/arm1', NAMES(joints), found)
     check = StepRig(arm1_urdf, params, setup.world, find)
     try:
         after = scores(check, check.gains, joints, setup.protocol, setup.criteria)
@@ -83,14 +87,14 @@ def test_search_meets_its_criteria_for_joint1_in_an_independent_run(arm1_urdf,
         assert search.set_results[('joint1', k)][0], search.set_results[('joint1', k)][3]
     assert {j: found[j] for j in joints if j != 'joint1'} == \
         {j: seed[j] for j in joints if j != 'joint1'}  # only the tuned joint's gains change
-    params = cli.with_gains(controllers_params, '/arm1', NAMES(joints), found)
+    params = with_gains(controllers_params, '/arm1', NAMES(joints), found)
     check = StepRig(arm1_urdf, params, setup.world, find)
     try:
         runs = [check.run('joint1', v) for v in setup.protocol.variants()]
     finally:
         check.close()
     for run in runs:
-        assert cli.verdict(run, setup.criteria) == 'ok'
+        assert verdict(run, setup.criteria) == 'ok'
         for m in run.metrics:
             assert m.overshoot <= 5.0 and m.settling_time < setup.protocol.hold
             assert m.jitter <= 0.001 and abs(m.steady_state_error) < 0.006
@@ -154,21 +158,21 @@ def test_shipped_tuned_gains_do_not_shake_where_the_seeds_do(arm1_urdf, controll
     """config/controllers_tuned.yaml keeps the promise its header and the README make."""
     with open(os.path.join(REPO_ROOT, 'config', 'controllers_tuned.yaml')) as f:
         tuned = yaml.safe_load(f)
-    setup = cli.Setup(cli.parse_args([]))
+    setup = Setup(cli.parse_args([]))
     results = {}
     for name, params in (('tuned', tuned), ('seed', controllers_params)):
         rig = StepRig(arm1_urdf, params, setup.world, find)
         try:
-            results[name] = cli.measure_all(rig, rig.joints, setup.protocol)
+            results[name] = measure_all(rig, rig.joints, setup.protocol)
         finally:
             rig.close()
-    verdicts = {name: [cli.verdict(run, setup.criteria) for runs in by_pose for run in runs.values()]
+    verdicts = {name: [verdict(run, setup.criteria) for runs in by_pose for run in runs.values()]
                 for name, by_pose in results.items()}
     assert len(verdicts['tuned']) == 8  # four joints, two start poses
     for v in verdicts['tuned']:
         assert v == 'ok' or v.startswith('does not shake, but overshoot'), v
     for runs in results['tuned']:
-        assert cli.verdict(runs['joint1'], setup.criteria) == 'ok'
+        assert verdict(runs['joint1'], setup.criteria) == 'ok'
         for run in runs.values():
             assert max(m.settling_time for m in run.metrics) < 0.7
     # the seed's gains: joints 2 and 3 never settle (no integral without i_clamp), and
@@ -177,14 +181,14 @@ def test_shipped_tuned_gains_do_not_shake_where_the_seeds_do(arm1_urdf, controll
 
 
 def test_poses_parse_and_bad_ones_are_named():
-    setup = cli.Setup(cli.parse_args(['--pose', 'joint2=0.9,joint3=-0.2', '--pose', 'joint2=1.2']))
+    setup = Setup(cli.parse_args(['--pose', 'joint2=0.9,joint3=-0.2', '--pose', 'joint2=1.2']))
     assert [v.start for v in setup.protocol.variants()] == [
         {'joint1': 0.0, 'joint2': 1.0, 'joint3': 0.0, 'joint4': 0.0},
         {'joint2': 0.9, 'joint3': -0.2}, {'joint2': 1.2}]
-    assert cli.Setup(cli.parse_args(['--pose', 'none'])).protocol.variants()[1:] == []
+    assert Setup(cli.parse_args(['--pose', 'none'])).protocol.variants()[1:] == []
     for bad in ('joint2', 'joint2=up', '=0.3'):
         try:
-            cli.parse_pose([bad])
+            parse_pose([bad])
         except SystemExit as e:
             assert "a pose is JOINT=RAD, not '%s'" % bad in str(e)
         else:

@@ -14,6 +14,7 @@ fast wobble (arm1's is at up to 500 Hz) may go unseen, so recorded overshoot, ji
 and settling time are lower bounds of what a 1 kHz record would show.
 """
 import bisect
+from typing import List, Tuple
 
 from .metrics import step_metrics
 
@@ -24,7 +25,7 @@ MIN_HOLD = 0.5  # s
 def find_steps(commands, min_step=MIN_STEP, min_hold=MIN_HOLD, end_time=None):
     """``[(t_step, previous command, target, t_end)]`` from ``[(t, value)]`` commands."""
     commands = sorted(commands)
-    changes = []  # (t, value) where the value changes
+    changes: List[Tuple[float, float]] = []  # (t, value) where the value changes
     for t, v in commands:
         if not changes or abs(v - changes[-1][1]) > 1e-9:
             changes.append((t, v))

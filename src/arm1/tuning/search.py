@@ -25,48 +25,74 @@ A run's score is its worse step's settling time when it meets the
 criteria, else the hold time plus penalties for how far it misses them, so that the
 search is led towards feasible gains even when it starts far from them.
 """
+from __future__ import annotations
+
 import math
 import multiprocessing
 import random
-import time
 from dataclasses import dataclass, field
+from typing import (
+    TYPE_CHECKING,
+    Any,
+    Callable,
+    Dict,
+    Iterable,
+    List,
+    Mapping,
+    Optional,
+    Sequence,
+    Tuple,
+)
 
-from .metrics import Criteria, worst
+from .metrics import Criteria, StepMetrics, worst
+
+if TYPE_CHECKING:
+    from multiprocessing.pool import Pool
+
+    from .steps import Protocol, StepRig
+
+Gains = Dict[str, Dict[str, Any]]  # joint -> p, i, d, i_clamp_max, i_clamp_min, antiwindup
+Score = Tuple[bool, float, StepMetrics, List[str]]  # feasible, score, worst step, failures
+Task = Tuple[str, Gains, 'Protocol']  # the joint stepped, every joint's gains, the protocol
+Outcome = Tuple[List[StepMetrics], float, float]  # step metrics, others' wobble and jitter
+Progress = Callable[[int, int, str], None]  # (done, total, text)
 
 
 @dataclass
 class SearchSpace:
-    p: tuple = (0.03, 100.0)
-    d: tuple = (3e-5, 0.1)
-    i: tuple = (0.1, 1000.0)  # the bottom decade of the sampled range means i = 0
-    i_clamp: tuple = (0.01, 0.3)  # fraction of the joint's effort limit
+    p: Tuple[float, float] = (0.03, 100.0)
+    d: Tuple[float, float] = (3e-5, 0.1)
+    i: Tuple[float, float] = (0.1, 1000.0)  # the bottom decade of the sampled range means i = 0
+    i_clamp: Tuple[float, float] = (0.01, 0.3)  # fraction of the joint's effort limit
     antiwindup: bool = True  # clamp the integral itself, so it does not wind up during a step
     spread: float = 0.25  # first generation's standard deviation, a fraction of each range
 
-    def bounds(self):
+    def bounds(self) -> List[Tuple[float, float]]:
         """(low, high) of the four log10 coordinates of one joint: p, d, i, i_clamp."""
-        return [tuple(math.log10(v) for v in self.p), tuple(math.log10(v) for v in self.d),
-                (math.log10(self.i[0]) - 1.0, math.log10(self.i[1])),
-                tuple(math.log10(v) for v in self.i_clamp)]
+        def log(r: Tuple[float, float]) -> Tuple[float, float]:
+            return math.log10(r[0]), math.log10(r[1])
+        return [log(self.p), log(self.d), (math.log10(self.i[0]) - 1.0, math.log10(self.i[1])),
+                log(self.i_clamp)]
 
 
 @dataclass
 class Candidate:
-    gains: dict  # joint -> gains, every joint of the robot
+    gains: Gains  # every joint of the robot
     value: float = math.inf  # sum of the scores of the tuned joints' runs
-    # (joint, start pose index) -> (feasible, score, worst StepMetrics, failures)
-    results: dict = field(default_factory=dict)
+    # (joint, start pose index) -> its run's Score
+    results: Dict[Tuple[str, int], Score] = field(default_factory=dict)
     complete: bool = True  # run from every start pose (else value is an estimate)
 
     @property
-    def feasible(self):
+    def feasible(self) -> bool:
         return all(r[0] for r in self.results.values())
 
 
 UNSTEADY = 20.0  # score penalty for not settling or jitter: shaking is worse than overshoot
 
 
-def score(metrics, criteria, hold, others_jitter=0.0):
+def score(metrics: Sequence[StepMetrics], criteria: Criteria, hold: float,
+          others_jitter: float = 0.0) -> Score:
     """(feasible, score, worst StepMetrics, failures) of a run's step metrics; the other
     joints must be as still as the stepped one at the end of each hold.
 
@@ -91,17 +117,18 @@ def score(metrics, criteria, hold, others_jitter=0.0):
 
 
 # --------------------------------------------------------------------------- evaluation
-_RIG = None
+_RIG: Optional[StepRig] = None  # this process's rig (one per pool worker)
 
 
-def _init_worker(rig_factory):
+def _init_worker(rig_factory: Callable[[], StepRig]) -> None:
     global _RIG
     _RIG = rig_factory()
 
 
-def _evaluate(task):
+def _evaluate(task: Task) -> Outcome:
     joint, all_gains, protocol = task
     rig = _RIG
+    assert rig is not None, 'the worker has no rig (_init_worker not run)'
     rig.gains = {j: dict(g) for j, g in all_gains.items()}
     run = rig.run(joint, protocol)
     return run.metrics, run.others_wobble, run.others_jitter
@@ -110,9 +137,9 @@ def _evaluate(task):
 class Evaluator:
     """Runs protocol runs, in this process (workers <= 1) or in a pool of processes."""
 
-    def __init__(self, rig_factory, workers=1):
+    def __init__(self, rig_factory: Callable[[], StepRig], workers: int = 1) -> None:
         self.workers = max(1, int(workers))
-        self.pool = None
+        self.pool: Optional[Pool] = None
         if self.workers > 1:
             ctx = multiprocessing.get_context('fork')
             self.pool = ctx.Pool(self.workers, _init_worker, (rig_factory,))
@@ -120,13 +147,13 @@ class Evaluator:
             _init_worker(rig_factory)
         self.runs = 0
 
-    def map(self, tasks):
+    def map(self, tasks: List[Task]) -> List[Outcome]:
         self.runs += len(tasks)
         if self.pool is None:
             return [_evaluate(t) for t in tasks]
         return self.pool.map(_evaluate, tasks, chunksize=1)
 
-    def close(self):
+    def close(self) -> None:
         if self.pool is not None:
             self.pool.terminate()
             self.pool.join()
@@ -134,9 +161,12 @@ class Evaluator:
 
 
 class GainSearch:
-    def __init__(self, evaluator, joints, initial_gains, effort_limits, protocol,
-                 criteria=None, space=None, generations=14, population=16, elite=6, seed=0,
-                 progress=None):
+    def __init__(self, evaluator: Optional[Evaluator], joints: Sequence[str],
+                 initial_gains: Mapping[str, Mapping[str, Any]],
+                 effort_limits: Mapping[str, Optional[float]], protocol: Optional[Protocol],
+                 criteria: Optional[Criteria] = None, space: Optional[SearchSpace] = None,
+                 generations: int = 14, population: int = 16, elite: int = 6, seed: int = 0,
+                 progress: Optional[Progress] = None) -> None:
         self.evaluator = evaluator
         self.joints = list(joints)  # the tuned joints: their gains change, their runs are scored
         self.initial = {j: dict(g) for j, g in initial_gains.items()}
@@ -149,16 +179,16 @@ class GainSearch:
         self.population = population
         self.elite = max(2, min(elite, population))
         self.rng = random.Random(seed)
-        self.progress = progress or (lambda done, total, text: None)
+        self.progress: Progress = progress or (lambda done, total, text: None)
         self.total = generations * population
         self.done = 0
-        self.best = None  # Candidate
+        self.best: Optional[Candidate] = None
 
     # -- coordinates: per tuned joint log10 p, d, i, i_clamp/effort --------------------
-    def _limit(self, joint):
+    def _limit(self, joint: str) -> float:
         return self.effort_limits.get(joint) or 1.0
 
-    def _encode(self, joint, g):
+    def _encode(self, joint: str, g: Mapping[str, Any]) -> List[float]:
         (p0, p1), (d0, d1), (i0, i1), (c0, c1) = self.space.bounds()
         clamp = max(abs(g.get('i_clamp_max', 0.0)), abs(g.get('i_clamp_min', 0.0)))
         return [_clip(math.log10(g['p']) if g['p'] > 0 else p0, p0, p1),
@@ -167,7 +197,7 @@ class GainSearch:
                 _clip(math.log10(clamp / self._limit(joint)) if clamp > 0
                       else math.log10(0.05), c0, c1)]
 
-    def _decode(self, x):
+    def _decode(self, x: Sequence[float]) -> Gains:
         i_on = math.log10(self.space.i[0])
         bounds = self.space.bounds()
         gains = {j: dict(g) for j, g in self.initial.items()}
@@ -181,7 +211,8 @@ class GainSearch:
         return gains
 
     # -- running ------------------------------------------------------------------
-    def evaluate(self, gain_sets, label='', always=()):
+    def evaluate(self, gain_sets: List[Gains], label: str = '',
+                 always: Iterable[int] = ()) -> List[Candidate]:
         """Candidates for whole gain sets: every tuned joint's run from the first start pose,
         and from the other poses only for the sets steady at the first one, the two best
         and those whose index is in ``always`` (racing: a set that shakes at one pose need
@@ -205,30 +236,32 @@ class GainSearch:
                 c.complete = False
         return cands
 
-    def steady(self, c):
+    def steady(self, c: Candidate) -> bool:
         """Every run of a Candidate settles without jitter (its own or the other joints',
         which score folds into the worst step's), however far it overshoots."""
         return all(self.criteria.steady(r[2]) for r in c.results.values())
 
-    def _scores(self, gain_sets, poses, label):
+    def _scores(self, gain_sets: List[Gains], poses: Iterable[int],
+                label: Optional[str]) -> List[Dict[Tuple[str, int], Score]]:
         """Per gain set, {(joint, pose index): score tuple} of the tuned joints' runs."""
+        evaluator, protocol = self.evaluator, self.protocol
+        assert evaluator is not None and protocol is not None, 'no evaluator or protocol'
         keys = [(j, k) for j in self.joints for k in poses]
         out = []
-        step = max(1, self.evaluator.workers) * 2
+        step = max(1, evaluator.workers) * 2
         for n in range(0, len(gain_sets), step):
             sets = gain_sets[n:n + step]
-            results = self.evaluator.map([(j, g, self.variants[k]) for g in sets
-                                          for j, k in keys])
+            results = evaluator.map([(j, g, self.variants[k]) for g in sets for j, k in keys])
             for m in range(len(sets)):
                 runs = results[m * len(keys):(m + 1) * len(keys)]
-                out.append({key: score(metrics, self.criteria, self.protocol.hold, jitter)
+                out.append({key: score(metrics, self.criteria, protocol.hold, jitter)
                             for key, (metrics, _, jitter) in zip(keys, runs)})
             if label is not None:
                 self.done += len(sets)
                 self.progress(self.done, self.total, label)
         return out
 
-    def run(self):
+    def run(self) -> Gains:
         """The best gain set found; the gains in force are the first candidate."""
         bounds = self.space.bounds() * len(self.joints)
         mean = []
@@ -259,18 +292,19 @@ class GainSearch:
                 mean[k] = 0.7 * m + 0.3 * mean[k]
                 spread[k] = max(0.03, 0.7 * sd + 0.3 * spread[k])
         self.progress(self.total, self.total, 'done  best %s' % self.describe(self.best))
+        assert self.best is not None  # generation 0 runs the gains in force from every pose
         return self.best.gains
 
-    def describe(self, c):
+    def describe(self, c: Optional[Candidate]) -> str:
         """One line on a Candidate: per joint ok, or its worst overshoot and whether it is
         unsteady (does not settle or jitters)."""
         if c is None:
             return '-'
-        joints = {}
+        joints: Dict[str, List[Score]] = {}
         for (joint, _), r in c.results.items():
             joints.setdefault(joint, []).append(r)
 
-        def one(rs):
+        def one(rs: List[Score]) -> str:
             if all(r[0] for r in rs):
                 return 'ok'
             unsteady = not all(self.criteria.steady(r[2]) for r in rs)
@@ -278,52 +312,25 @@ class GainSearch:
         return ', '.join('%s %s' % (j, one(rs)) for j, rs in joints.items())
 
     @property
-    def set_results(self):
+    def set_results(self) -> Dict[Tuple[str, int], Score]:
+        assert self.best is not None, 'run() first'
         return self.best.results
 
     @property
-    def set_value(self):
+    def set_value(self) -> float:
+        assert self.best is not None, 'run() first'
         return self.best.value
 
 
-def fmt_time(t):
+def fmt_time(t: float) -> str:
     return '%.3f s' % t if math.isfinite(t) else 'never'
 
 
-def _rounded(g):
+def _rounded(g: Mapping[str, Any]) -> Dict[str, Any]:
     """Gains as the yaml snippet prints them (4 significant digits): what is evaluated is
     exactly what is shipped."""
     return {k: (v if isinstance(v, bool) else float('%.4g' % v)) for k, v in g.items()}
 
 
-def _clip(v, lo, hi):
+def _clip(v: float, lo: float, hi: float) -> float:
     return min(max(v, lo), hi)
-
-
-class ProgressBar:
-    """``[#####-----]  45%  12.3 s  text`` on one line of a terminal (or plain lines)."""
-
-    def __init__(self, stream, width=30):
-        self.stream, self.width = stream, width
-        self.start = time.monotonic()
-        self.tty = hasattr(stream, 'isatty') and stream.isatty()
-        self._last = 0.0
-
-    def __call__(self, done, total, text):
-        now = time.monotonic()
-        if not self.tty and now - self._last < 2.0 and done < total:
-            return
-        self._last = now
-        frac = min(1.0, done / total) if total else 1.0
-        bar = '#' * int(frac * self.width) + '-' * (self.width - int(frac * self.width))
-        line = '[%s] %3d%%  %5.1f s  %s' % (bar, frac * 100, now - self.start, text)
-        if self.tty:
-            self.stream.write('\r\x1b[K' + line[:160])
-        else:
-            self.stream.write(line + '\n')
-        self.stream.flush()
-
-    def finish(self):
-        if self.tty:
-            self.stream.write('\n')
-            self.stream.flush()
