@@ -12,7 +12,8 @@ Usable without ROS: when rospkg is missing or does not know the package,
 import os
 import sys
 
-_ARM1_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from .paths import repo_root
+
 _rospack = None
 
 
@@ -38,8 +39,8 @@ def find_package(pkg):
             return _rospack.get_path(pkg)
         except rospkg.ResourceNotFound:
             pass
-    if pkg == 'arm1' and os.path.isfile(os.path.join(_ARM1_ROOT, 'package.xml')):
-        return _ARM1_ROOT
+    if pkg == 'arm1' and os.path.isfile(os.path.join(repo_root(), 'package.xml')):
+        return repo_root()
     raise _not_found(pkg)
 
 
