@@ -8,8 +8,8 @@ from typing import Dict, Optional, Tuple
 import psutil
 import rosgraph
 import rospy
+from gazebo_msgs.srv import DeleteModel, SpawnModel
 
-from arm1.srv import DeleteModel, SpawnModel
 from camera_util import node_pid
 from rostest_util import Recorder, wait_for
 

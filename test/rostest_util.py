@@ -3,6 +3,7 @@ import threading
 import time
 
 import rospy
+from controller_manager_msgs.srv import ListControllers
 from rosgraph_msgs.msg import Clock
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
@@ -69,7 +70,6 @@ def sim_wait(seconds):
 
 def wait_for_controllers(count=5, ns='/arm1', timeout=60):
     """Wait until ``count`` controllers run in ``ns``; returns the list_controllers proxy."""
-    from arm1.srv import ListControllers
     name = ns + '/controller_manager/list_controllers'
     rospy.wait_for_service(name, timeout)
     list_controllers = rospy.ServiceProxy(name, ListControllers)

@@ -8,10 +8,11 @@ import unittest
 
 import rospy
 import rostest
+from controller_manager_msgs.srv import ListControllers, LoadController
+from gazebo_msgs.srv import SpawnModel
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import clock_recorder, rosout_recorder, wait_for  # noqa: E402
-from arm1.srv import ListControllers, LoadController, SpawnModel  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CM = '/arm1/controller_manager/'

@@ -7,13 +7,15 @@ import time
 import unittest
 
 import rospy
+import rosservice
 import rostest
+import rostopic
+from control_msgs.msg import JointControllerState
 from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import (JOINTS, clock_recorder, joint_recorder, positions,  # noqa: E402
                           rosout_recorder, sim_wait, wait_for, wait_for_controllers)
-from arm1.msg import JointControllerState  # noqa: E402
 
 LIMITS = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
           'joint4': (-0.8, 1.57)}
@@ -49,6 +51,21 @@ class Basics(unittest.TestCase):
             return len(recent) >= 20 and all(abs(positions(m)[joint] - target) <= tol
                                               for m in recent)
         return wait_for(ok, timeout)
+
+    def test_00_services_and_state_have_upstream_type_names(self):
+        # Upstream's tools (rqt_controller_manager, the real spawner) find a controller
+        # manager by its services' type names; md5sums alone would not tell the types apart.
+        expected = {'/gazebo/spawn_urdf_model': 'gazebo_msgs/SpawnModel',
+                    '/gazebo/delete_model': 'gazebo_msgs/DeleteModel',
+                    '/gazebo/set_model_configuration': 'gazebo_msgs/SetModelConfiguration'}
+        for name in ('list_controllers', 'list_controller_types', 'load_controller',
+                     'unload_controller', 'switch_controller', 'reload_controller_libraries'):
+            kind = ''.join(w.capitalize() for w in name.split('_'))
+            expected['/arm1/controller_manager/' + name] = 'controller_manager_msgs/' + kind
+        got = {name: rosservice.get_service_type(name) for name in expected}
+        self.assertEqual(got, expected)
+        topic = '/arm1/joint1_position_controller/state'
+        self.assertEqual(rostopic.get_topic_type(topic)[0], 'control_msgs/JointControllerState')
 
     def test_01_controllers_running(self):
         resp = self.list_controllers()

@@ -23,7 +23,15 @@ import unittest
 
 import rospy
 import rostest
+from control_msgs.msg import JointControllerState
+from controller_manager_msgs.srv import (
+    ListControllerTypes,
+    LoadController,
+    SwitchController,
+    UnloadController,
+)
 from dynamic_reconfigure.client import Client
+from gazebo_msgs.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -32,10 +40,7 @@ from faults_util import (ClockPace, World, finite_arm, logged, raw_service_call,
                          urdf)
 from rostest_util import (Recorder, clock_recorder, joint_recorder, rosout_recorder,  # noqa: E402
                           sim_wait, wait_for, wait_for_controllers)
-from arm1.msg import JointControllerState  # noqa: E402
 from arm1.ros.node_handle import synchronous_publisher  # noqa: E402
-from arm1.srv import (DeleteModel, ListControllerTypes, LoadController,  # noqa: E402
-                      SetModelConfiguration, SpawnModel, SwitchController, UnloadController)
 
 CM = '/arm1/controller_manager/'
 CTRL = '/arm1/%s_position_controller'

@@ -23,7 +23,10 @@ import unittest
 import rosgraph
 import rospy
 import rostest
+from control_msgs.msg import JointControllerState
+from controller_manager_msgs.srv import ListControllers, SwitchController
 from dynamic_reconfigure.client import Client
+from gazebo_msgs.srv import SetModelConfiguration
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 
@@ -32,8 +35,6 @@ from camera_util import ImageRecorder  # noqa: E402
 from faults_util import ClockPace, World, finite_arm, logged, urdf  # noqa: E402
 from rostest_util import (Recorder, clock_recorder, joint_recorder, rosout_recorder,  # noqa: E402
                           sim_wait, wait_for, wait_for_controllers)
-from arm1.msg import JointControllerState  # noqa: E402
-from arm1.srv import ListControllers, SetModelConfiguration, SwitchController  # noqa: E402
 
 CM = '/arm1/controller_manager/'
 CONTROLLERS = ['joint_state_controller'] + ['joint%d_position_controller' % i
@@ -44,7 +45,7 @@ RSS_SLACK_MB = 10.0  # resident memory it may grow by over the cycles, after a w
 # A client that spawns, configures and deletes a model in a loop, until killed.
 LOOPING_CLIENT = '''
 import rospy
-from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
+from gazebo_msgs.srv import DeleteModel, SetModelConfiguration, SpawnModel
 rospy.init_node('looping_client', anonymous=True)
 spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
 delete = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)
@@ -59,7 +60,7 @@ while True:
 # A client whose switch waits for the next update (physics is paused), until killed.
 WAITING_SWITCH = '''
 import rospy
-from arm1.srv import SwitchController
+from controller_manager_msgs.srv import SwitchController
 rospy.init_node('waiting_switch', anonymous=True)
 switch = rospy.ServiceProxy('/arm1/controller_manager/switch_controller', SwitchController)
 print('calling', flush=True)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python
 """Live gains and the controller state topic, under gazebo.launch and in-process.
 
-- ``<controller>/state`` (arm1/JointControllerState, as control_msgs') comes every 10th
+- ``<controller>/state`` (control_msgs/JointControllerState) comes every 10th
   update (100 Hz of sim time) and its fields are the controller's: error = set_point -
   process_value, process_value = the joint_states position, command = the PID's effort,
   p/i/d/i_clamp/antiwindup = the gains in force.
@@ -17,6 +17,8 @@ import unittest
 
 import rospy
 import rostest
+from control_msgs.msg import JointControllerState
+from controller_manager_msgs.srv import ListControllers
 from dynamic_reconfigure.client import Client
 from std_msgs.msg import Float64
 
@@ -24,9 +26,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import Recorder, joint_recorder, positions, sim_wait, wait_for  # noqa: E402
 from arm1.control.hardware_interface import JointHandle, JointLimits  # noqa: E402
 from arm1.control.joint_position_controller import JointPositionController  # noqa: E402
-from arm1.msg import JointControllerState  # noqa: E402
 from arm1.ros.node_handle import RosNodeHandle  # noqa: E402
-from arm1.srv import ListControllers  # noqa: E402
 
 NS = '/arm1/joint1_position_controller'
 

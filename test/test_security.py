@@ -20,11 +20,11 @@ import uuid
 
 import rospy
 import rostest
+from gazebo_msgs.srv import DeleteModel, SpawnModel
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import node_pid  # noqa: E402
 from rostest_util import clock_recorder, rosout_recorder, wait_for  # noqa: E402
-from arm1.srv import DeleteModel, SpawnModel  # noqa: E402
 
 MODELS_LIMIT = 40  # test/config/security.world
 MIN_RTF = 0.95

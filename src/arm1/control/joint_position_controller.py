@@ -44,7 +44,7 @@ class JointPositionController(Controller):
             self.pid = Pid.from_params(controller_nh.params.get('pid'), ns + '/pid')
         except PidConfigError as exc:
             raise ControllerError(str(exc))
-        self._state_pub = controller_nh.advertise('state', 'arm1/JointControllerState', 1)
+        self._state_pub = controller_nh.advertise('state', 'control_msgs/JointControllerState', 1)
         controller_nh.subscribe('command', 'std_msgs/Float64', self.set_command)
         # Live gains at <controller>/pid, as control_toolbox's Pid serves them with
         # dynamic_reconfigure; a node handle without ``serve_config`` offers none.

@@ -1,10 +1,15 @@
 """The ``<ns>/controller_manager/*`` services (upstream: the ROS side of controller_manager),
 translated onto the ROS-free ControllerManager."""
 import rospy
-
-from arm1.msg import ControllerState, HardwareInterfaceResources
-from arm1.srv import (ListControllers, ListControllerTypes, LoadController,
-                      ReloadControllerLibraries, SwitchController, UnloadController)
+from controller_manager_msgs.msg import ControllerState, HardwareInterfaceResources
+from controller_manager_msgs.srv import (
+    ListControllers,
+    ListControllerTypes,
+    LoadController,
+    ReloadControllerLibraries,
+    SwitchController,
+    UnloadController,
+)
 
 from ..control.controller_manager import BASE_CLASS, ControllerManager, ControllerManagerError
 from .node_handle import RosNodeHandle

@@ -9,9 +9,8 @@ from typing import Any, Callable, List, Sequence, Tuple
 
 import rosgraph.names
 import rospy
+from gazebo_msgs.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from std_srvs.srv import Empty
-
-from arm1.srv import DeleteModel, SetModelConfiguration, SpawnModel
 
 from ..description.names import shown
 from ..simulation import Model, PreparedUrdf, Simulation, SpawnError

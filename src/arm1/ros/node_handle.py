@@ -7,10 +7,9 @@ import logging
 import warnings
 
 import rospy
+from control_msgs.msg import JointControllerState
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
-
-from arm1.msg import JointControllerState
 
 
 def synchronous_publisher(topic, msg_class, **kwargs):
@@ -46,7 +45,7 @@ def _fill_data(msg, value):
 # type name -> (message class, fill(message, core's fields))
 MESSAGES = {
     'sensor_msgs/JointState': (JointState, _fill_stamped),
-    'arm1/JointControllerState': (JointControllerState, _fill_stamped),
+    'control_msgs/JointControllerState': (JointControllerState, _fill_stamped),
     'std_msgs/Float64': (Float64, _fill_data),
 }
 

@@ -5,9 +5,8 @@ import sys
 import time
 
 import rospy
+from gazebo_msgs.srv import SetModelConfiguration, SpawnModel
 from geometry_msgs.msg import Pose
-
-from arm1.srv import SetModelConfiguration, SpawnModel
 from std_srvs.srv import Empty
 
 

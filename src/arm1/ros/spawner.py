@@ -3,8 +3,7 @@ import argparse
 import sys
 
 import rospy
-
-from arm1.srv import LoadController, SwitchController, UnloadController
+from controller_manager_msgs.srv import LoadController, SwitchController, UnloadController
 
 STRICT = 2
 
