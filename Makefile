@@ -39,7 +39,7 @@ APT_PACKAGES := \
   python3-rosservice python3-rostopic python3-rosparam python3-rosnode \
   python3-rosmsg python3-rosbag rospack-tools python3-rosmaster python3-rospkg \
   python3-catkin-pkg \
-  python3-venv python3-pip python3-numpy python3-yaml python3-psutil python3-defusedxml python3-tqdm \
+  python3-venv python3-pip python3-numpy python3-yaml python3-psutil python3-defusedxml python3-tqdm python3-pil \
   cmake make g++ xvfb \
   rviz joint-state-publisher-gui libgl1-mesa-dri libglx-mesa0
 
