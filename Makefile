@@ -26,7 +26,7 @@ PKG_LINK := $(WS)/src/arm1
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
 APT_PACKAGES := \
-  python3-rospy python3-roslaunch python3-rostest python3-rosunit rosbash \
+  python3-rospy python3-roslaunch python3-rostest librostest-dev python3-rosunit rosbash \
   catkin rosout ros-robot-state-publisher joint-state-publisher \
   python3-std-msgs python3-sensor-msgs python3-std-srvs python3-geometry-msgs \
   python3-rosgraph-msgs python3-trajectory-msgs python3-actionlib-msgs \
@@ -51,7 +51,7 @@ BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py \
   $(wildcard $(ROOT)/tools/compat_msgs/*/*/*)
 
-.PHONY: setup venv build demo test bench soak clean link-package
+.PHONY: setup venv build demo test lint bench soak clean link-package
 
 # A stamp is only trusted while what it stands for is still there.
 ifeq ($(wildcard $(VENV_PY)),)
@@ -135,7 +135,7 @@ link-package:
 #    Up to date, catkin_make takes ~0.7 s; the stamp skips even that.
 CATKIN_MAKE = cd $(WS) && catkin_make --source $(WS)/src --build $(WS)/build \
   -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(VENV_PY) \
-  -DCATKIN_ENABLE_TESTING=OFF -j2 > $(WS)/build.log 2>&1 \
+  -DCATKIN_ENABLE_TESTING=ON -j2 > $(WS)/build.log 2>&1 \
   || { tail -n 60 $(WS)/build.log; echo "catkin_make failed (full log: .ws/build.log)" >&2; exit 1; }
 
 $(STAMPS)/build: $(STAMPS)/venv $(BUILD_INPUTS) | link-package
@@ -153,6 +153,10 @@ demo: setup
 
 test: setup
 	$(WS_SHELL) python test/run_all.py
+
+# ruff (lint, format check) and mypy, as make test runs them first.
+lint: setup
+	cd $(ROOT) && $(VENV_PY) -m ruff check . && $(VENV_PY) -m ruff format --check . && $(VENV_PY) -m mypy
 
 bench: setup
 	$(WS_SHELL) python -m arm1.bench

@@ -1,4 +1,5 @@
-"""Every test of the package: test/unit and test/integration (pytest), then each test/*.test (rostest).
+"""Every test of the package: ruff and mypy, test/unit and test/integration (pytest), then each
+test/*.test (rostest).
 
 Run inside the sourced workspace (``make test`` does). Prints each suite's
 outcome as it goes and ends with one line ``N passed, N failed``; exits
@@ -68,10 +69,33 @@ def run_rostest(path, out):
     return passed, failed, names
 
 
+LINTERS = [  # (name, command): ruff.toml and mypy.ini at the repository root configure them
+    ('ruff check', ['-m', 'ruff', 'check', '.']),
+    ('ruff format', ['-m', 'ruff', 'format', '--check', '.']),
+    ('mypy', ['-m', 'mypy']),
+]
+
+
+def run_lint():
+    """Each linter counts as one test: it passes when it finds nothing."""
+    root = os.path.dirname(HERE)
+    passed, failed, names = 0, 0, []
+    for name, args in LINTERS:
+        proc = subprocess.run([sys.executable] + args, cwd=root, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+        ok = proc.returncode == 0
+        print('lint %-12s %s' % (name, 'ok' if ok else 'FAILED'), flush=True)
+        if ok:
+            passed += 1
+        else:
+            print(proc.stdout[-6000:])
+            failed, names = failed + 1, names + ['lint: %s' % name]
+    return passed, failed, names
+
+
 def main():
     out = tempfile.mkdtemp(prefix='arm1-test-')
-    passed = failed = 0
-    names = []
+    passed, failed, names = run_lint()
     for suite in ('unit', 'integration'):
         p, f, n = run_pytest(out, suite)
         print('%s tests: %d passed, %d failed' % (suite, p, f), flush=True)
