@@ -13,17 +13,16 @@ import os
 import subprocess
 import sys
 import time
-import unittest
 
 import rospy
 import rostest
 from control_msgs.msg import JointControllerState
-from controller_manager_msgs.srv import ListControllers
 from dynamic_reconfigure.client import Client
 from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import Recorder, joint_recorder, positions, sim_wait, wait_for  # noqa: E402
+from rostest_util import Recorder, WorldTestCase, joint_recorder, positions, sim_wait, wait_for  # noqa: E402
+
 from arm1.control.hardware_interface import JointHandle, JointLimits  # noqa: E402
 from arm1.control.joint_position_controller import JointPositionController  # noqa: E402
 from arm1.ros.node_handle import RosNodeHandle  # noqa: E402
@@ -41,16 +40,16 @@ class OneJointHw:
         return self.handle
 
 
-class Reconfigure(unittest.TestCase):
+class Reconfigure(WorldTestCase):
+    NODE = 'test_pid_reconfigure'
+    CONTROLLERS = 5
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_pid_reconfigure')
+        super().setUpClass()
         cls.states = Recorder(NS + '/state', JointControllerState)
         cls.joints = joint_recorder()
         cls.cmd = rospy.Publisher(NS + '/command', Float64, queue_size=1, latch=True)
-        rospy.wait_for_service('/arm1/controller_manager/list_controllers', 60)
-        lc = rospy.ServiceProxy('/arm1/controller_manager/list_controllers', ListControllers)
-        assert wait_for(lambda: sum(c.state == 'running' for c in lc().controller) == 5, 60)
         rospy.wait_for_service(NS + '/pid/set_parameters', 30)
 
     def recent_states(self, since, n):
@@ -129,14 +128,14 @@ class Reconfigure(unittest.TestCase):
         nh = RosNodeHandle('/reconf_test/c')
         c.init(hw, RosNodeHandle('/reconf_test'), nh)
         try:
-            c.starting(0)
-            c.command = 0.5
-            c.update(0, 0.001)
+            c.start_request(0)
+            c.target = 0.5
+            c.update(0, 1000000)
             self.assertAlmostEqual(hw.handle.command, 0.5)
             self.assertEqual(rospy.get_param('/reconf_test/c/pid/i_clamp_max'), 0.0)
             Client('/reconf_test/c/pid', timeout=10).update_configuration({'p': 4.0})
             self.assertAlmostEqual(hw.handle.command, 0.5)  # not before the update
-            c.update(1000000, 0.001)
+            c.update(1000000, 1000000)
             self.assertAlmostEqual(hw.handle.command, 2.0)  # 4.0 * 0.5, at the next update
             self.assertEqual(c.pid.p, 4.0)
         finally:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from .control.controller_manager import ControllerManager
+from .control.loop import ControlLoop, control_period_ns
 from .description.camera_sensor import CameraSensor, camera_sensors
 from .description.limits import LimitError
 from .description.names import IllegalName, check_name, shown
@@ -42,6 +43,7 @@ class Model:
     robot: Robot
     hw: Optional[DefaultRobotHWSim] = None  # when the URDF has the gazebo_ros_control plugin
     controller_manager: Optional[ControllerManager] = None
+    control: Optional[ControlLoop] = None  # when its controllers update; with the manager
     namespace: str = ''
     cameras: List[Camera] = field(default_factory=list)  # one per camera sensor
     plugins: List[Plugin] = field(default_factory=list)  # the ROS layer's part, shut down on delete
@@ -150,7 +152,10 @@ class Simulation:
             model.cameras = self.sensors.add_robot(name, prepared.load_args, prepared.sensors)
             if attach is not None:
                 attach(model)
-            if model.controller_manager is not None and model not in self._controlled:
+            plugin, manager = model.description.control_plugin, model.controller_manager
+            if plugin and model.hw and manager and model not in self._controlled:
+                model.control = ControlLoop(model.hw, manager, control_period_ns(
+                    plugin.control_period, self.step_ns, name))
                 self._controlled.append(model)
         except (UrdfError, LimitError, SpawnError) as exc:
             self._release(model)
@@ -211,13 +216,13 @@ class Simulation:
             raise SpawnError('non-finite position for joint(s) %s' % ', '.join(bad))
         model.robot.set_joint_positions(dict(zip(joint_names, positions)))
 
-    def step(self):
-        """One physics iteration: read, update controllers, write, step."""
-        now, period = self.time_ns, self.period
+    def step(self) -> None:
+        """One physics iteration: read and update controllers (each model at its control
+        period), write, step."""
+        now = self.time_ns
         for model in self._controlled:
-            model.hw.read()
-            model.controller_manager.update(now, period)
-            model.hw.write()
+            if model.control is not None:
+                model.control.update(now)
         self.world.step()
         self.steps += 1
         if self.sensors.cameras:

@@ -2,13 +2,14 @@
 
 Nothing here imports rospy: controllers and the controller manager talk to a
 ``FakeRos`` (a parameter tree plus recorded publishers and subscribers) through
-``FakeNodeHandle``s, which implement the node-handle contract of
-``arm1/control/controller.py``.
+``FakeNodeHandle``s, which implement the NodeHandle Protocol of
+``arm1/control/interfaces.py``.
 """
+from __future__ import annotations
+
 import os
 import sys
-import threading
-import time
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import pytest
 
@@ -17,7 +18,10 @@ SRC = os.path.join(REPO_ROOT, 'src')
 if SRC not in sys.path:
     sys.path.insert(0, SRC)
 
-from arm1.tuning.local_ros import LocalNodeHandle, LocalRos  # noqa: E402  (after SRC)
+from arm1.control.controller_manager import ControllerManager  # noqa: E402  (after SRC)
+from arm1.control.interfaces import Fields, NodeFactory, Params  # noqa: E402
+from arm1.control.switching import switch_while_updating  # noqa: E402
+from arm1.tuning.local_ros import LocalNodeHandle, LocalRos  # noqa: E402
 
 ARM1_XACRO = os.path.join(REPO_ROOT, 'urdf', 'arm1.urdf.xacro')
 CONTROLLERS_YAML = os.path.join(REPO_ROOT, 'config', 'controllers.yaml')
@@ -29,34 +33,36 @@ JSC = 'joint_state_controller/JointStateController'
 
 # --------------------------------------------------------------------------- node handles
 class FakePublisher:
-    def __init__(self, topic, type_name, queue_size):
+    def __init__(self, topic: str, type_name: str, queue_size: int) -> None:
         self.topic, self.type_name, self.queue_size = topic, type_name, queue_size
-        self.messages = []
+        self.messages: List[Fields] = []
 
-    def publish(self, fields):
+    def publish(self, fields: Fields) -> None:
         self.messages.append(fields)
 
 
 class FakeNodeHandle(LocalNodeHandle):
     """The tuner's in-process node handle, also keeping every publisher it made."""
 
-    def __init__(self, ros, namespace):
+    ros: FakeRos
+
+    def __init__(self, ros: FakeRos, namespace: str) -> None:
         super().__init__(ros, namespace)
-        self.publishers = []
+        self.publishers: List[FakePublisher] = []
         self.is_shutdown = False
         ros.handles.append(self)
 
     @property
-    def subscriptions(self):
+    def subscriptions(self) -> List[Tuple[str, Callable[[Any], object]]]:
         return self._subscriptions
 
-    def advertise(self, topic, type_name, queue_size):
+    def advertise(self, topic: str, type_name: str, queue_size: int) -> FakePublisher:
         pub = FakePublisher(self.resolve(topic), type_name, queue_size)
         self.publishers.append(pub)
         self.ros.publishers.setdefault(pub.topic, []).append(pub)
         return pub
 
-    def shutdown(self):
+    def shutdown(self) -> None:
         self.is_shutdown = True
         super().shutdown()
         for pub in self.publishers:
@@ -67,46 +73,51 @@ class FakeNodeHandle(LocalNodeHandle):
 class FakeRos(LocalRos):
     """LocalRos (parameters as a dict tree, topics as lists) that keeps every message."""
 
-    def __init__(self, params=None):
+    def __init__(self, params: Optional[Params] = None) -> None:
         super().__init__(params)
-        self.handles = []
-        self.publishers = {}  # topic -> [FakePublisher]
+        self.handles: List[FakeNodeHandle] = []
+        self.publishers: Dict[str, List[FakePublisher]] = {}
 
-    def node_handle(self, namespace):
+    def node_handle(self, namespace: str) -> FakeNodeHandle:
         """The ``node_factory`` a ControllerManager takes."""
         return FakeNodeHandle(self, namespace)
 
-    def messages(self, topic):
-        out = []
+    def messages(self, topic: str) -> List[Fields]:
+        out: List[Fields] = []
         for pub in self.publishers.get(topic, []):
             out.extend(pub.messages)
         return out
+
+
+if TYPE_CHECKING:  # mypy holds both in-process node handles to the NodeHandle Protocol
+    _factories: Tuple[NodeFactory, ...] = (LocalRos().node_handle, FakeRos().node_handle)
 
 
 # --------------------------------------------------------------------------- physics fakes
 class FakeRobot:
     """Stands in for physics.robot.Robot under DefaultRobotHWSim."""
 
-    def __init__(self, joint_names):
+    def __init__(self, joint_names: Sequence[str]) -> None:
         self.joint_index = {n: i for i, n in enumerate(joint_names)}
         self.state = {i: (0.0, 0.0) for i in self.joint_index.values()}
-        self.applied = []  # [(indices, efforts)] per write
+        self.applied: List[Tuple[List[int], List[float]]] = []  # per write
 
-    def indices(self, names):
+    def indices(self, names: Sequence[str]) -> List[int]:
         return [self.joint_index[n] for n in names]
 
-    def read(self, indices):
+    def read(self, indices: Sequence[int]) -> List[Tuple[float, float]]:
         return [self.state[i] for i in indices]
 
-    def apply_efforts(self, indices, efforts):
+    def apply_efforts(self, indices: Sequence[int], efforts: Sequence[float]) -> None:
         self.applied.append((list(indices), list(efforts)))
 
-    def set(self, name, position, velocity=0.0):
+    def set(self, name: str, position: float, velocity: float = 0.0) -> None:
         self.state[self.joint_index[name]] = (position, velocity)
 
 
 # --------------------------------------------------------------------------- URDF snippets
-def transmission(joint, interface='hardware_interface/EffortJointInterface', name=None):
+def transmission(joint: str, interface: str = 'hardware_interface/EffortJointInterface',
+                 name: Optional[str] = None) -> str:
     return """
   <transmission name="%s">
     <type>transmission_interface/SimpleTransmission</type>
@@ -115,7 +126,7 @@ def transmission(joint, interface='hardware_interface/EffortJointInterface', nam
   </transmission>""" % (name or 'tran_' + joint, joint, interface, joint)
 
 
-def box_link(name, size='0.1 0.1 0.1', mass=0.5, xyz='0 0 0'):
+def box_link(name: str, size: str = '0.1 0.1 0.1', mass: float = 0.5, xyz: str = '0 0 0') -> str:
     sx, sy, sz = (float(v) for v in size.split())
     ixx, iyy, izz = (mass / 12.0 * (b * b + c * c) for b, c in ((sy, sz), (sx, sz), (sx, sy)))
     return """
@@ -127,7 +138,8 @@ def box_link(name, size='0.1 0.1 0.1', mass=0.5, xyz='0 0 0'):
   </link>""" % (name, xyz, mass, ixx, iyy, izz, xyz, size, xyz, size)
 
 
-def cylinder_link(name, radius=0.05, length=0.02, mass=0.5):
+def cylinder_link(name: str, radius: float = 0.05, length: float = 0.02,
+                  mass: float = 0.5) -> str:
     izz = 0.5 * mass * radius ** 2
     ixx = mass * (3 * radius ** 2 + length ** 2) / 12.0
     return """
@@ -139,7 +151,7 @@ def cylinder_link(name, radius=0.05, length=0.02, mass=0.5):
   </link>""" % (name, mass, ixx, ixx, izz, radius, length, radius, length)
 
 
-def control_plugin(namespace):
+def control_plugin(namespace: Optional[str]) -> str:
     inner = '<robotNamespace>%s</robotNamespace>' % namespace if namespace is not None else ''
     return """
   <gazebo>
@@ -192,7 +204,7 @@ MIXED_GAINS = {
 }
 
 
-def mixed_params():
+def mixed_params() -> Params:
     ns = {'joint_state_controller': {'type': JSC, 'publish_rate': 100}}
     for joint, gains in MIXED_GAINS.items():
         ns[joint.replace('_joint', '') + '_controller'] = {
@@ -201,34 +213,24 @@ def mixed_params():
 
 
 # --------------------------------------------------------------------------- helpers
-def pump_switch(cm, start, stop=(), strictness=2, timeout=0.0, time_ns=0, period=0.001,
-                deadline=2.0):
-    """Call ``cm.switch_controller`` from a thread, as a ROS service would, while this
-    thread keeps calling ``cm.update`` (the simulation loop). Returns what the call returned
-    and how many updates ran before it did."""
-    result = []
-    t = threading.Thread(
-        target=lambda: result.append(cm.switch_controller(list(start), list(stop), strictness,
-                                                          timeout)), daemon=True)
-    t.start()
-    updates = 0
-    end = time.monotonic() + deadline
-    while t.is_alive() and time.monotonic() < end:
-        cm.update(time_ns, period)
-        updates += 1
-        t.join(0.002)
-    assert not t.is_alive(), 'switch_controller did not return while updates ran'
-    return result[0], updates
+def pump_switch(cm: ControllerManager, start: Sequence[str], stop: Sequence[str] = (),
+                strictness: int = 2, timeout: float = 0.0, time_ns: int = 0,
+                period_ns: int = 1000000, deadline: float = 2.0) -> Tuple[bool, int]:
+    """``cm.switch_controller`` from a thread, as a ROS service calls it, while this thread
+    keeps calling ``cm.update`` (the simulation loop). Returns what the call returned and
+    how many updates ran before it did."""
+    return switch_while_updating(cm, start, stop, lambda: cm.update(time_ns, period_ns),
+                                 strictness, timeout, deadline, poll=0.002)
 
 
 # --------------------------------------------------------------------------- fixtures
 @pytest.fixture
-def fake_ros():
+def fake_ros() -> FakeRos:
     return FakeRos()
 
 
 @pytest.fixture(scope='session')
-def arm1_urdf():
+def arm1_urdf() -> str:
     """The arm1 description expanded by PyPI's xacro with ``$(find arm1)`` = this repo."""
     import xacro
     import xacro.substitution_args as sa
@@ -243,7 +245,7 @@ def arm1_urdf():
 
 
 @pytest.fixture(scope='session')
-def controllers_params():
+def controllers_params() -> Params:
     """config/controllers.yaml as the parameter server would hold it."""
     import yaml
     with open(CONTROLLERS_YAML) as f:
@@ -251,8 +253,8 @@ def controllers_params():
 
 
 @pytest.fixture
-def find_package():
-    def find(pkg):
+def find_package() -> Callable[[str], str]:
+    def find(pkg: str) -> str:
         if pkg == 'arm1':
             return REPO_ROOT
         raise LookupError(pkg)

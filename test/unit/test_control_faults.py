@@ -85,7 +85,7 @@ def test_a_command_outside_the_limits_is_clamped_and_said_once_per_start(caplog)
     said = [r.getMessage() for r in caplog.records]
     assert len(said) == 1 and 'c: command 1e+300 for joint slider_joint is outside its limits' \
         in said[0] and 'clamped to 0.2000' in said[0], said
-    rig.c.stopping(0)
+    rig.stop()
     rig.start()
     with caplog.at_level(logging.WARNING, logger='arm1.control'):
         rig.command(7.0)

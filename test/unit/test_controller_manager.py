@@ -4,13 +4,18 @@ import time
 
 import pytest
 
+from arm1.control.controller import Controller
 from arm1.control.controller_manager import (BEST_EFFORT, STRICT, ControllerManager,
                                              ControllerManagerError)
+from arm1.control.joint_position_controller import JointPositionController
+from arm1.control.registry import CONTROLLER_TYPES, by_type_name
+from arm1.control.switching import SwitchRequest, SwitchTimeout, switch_while_updating
 from arm1.description.urdf_model import parse_urdf
 from arm1.robot_hw_sim import DefaultRobotHWSim
 from conftest import JPC, JSC, MIXED_URDF, FakeRobot, FakeRos, pump_switch
 
 NS = '/mixed_ns'
+PERIOD_NS = 1000000  # a 1 ms physics step
 PARAMS = {'mixed_ns': {
     'joint_state_controller': {'type': JSC, 'publish_rate': 50},
     'wheel_controller': {'type': JPC, 'joint': 'wheel_joint', 'pid': {'p': 1.0}},
@@ -144,20 +149,15 @@ def test_switch_takes_effect_at_the_next_update_and_the_caller_waits(rig):
     cm.load_controller('flap_controller')
     robot.set('flap_joint', 0.3)
     hw.read()
-    result = []
-    t = threading.Thread(target=lambda: result.append(
-        cm.switch_controller(['flap_controller'], [], STRICT)), daemon=True)
-    t.start()
+    request = SwitchRequest(cm, ['flap_controller'], [], STRICT)
     time.sleep(0.1)
-    assert t.is_alive(), 'switch_controller returned before any update'
+    assert request.waiting, 'switch_controller returned before any update'
     assert states(cm)['flap_controller'] == 'initialized'
-    cm.update(5000000, 0.001)
-    t.join(2.0)
-    assert not t.is_alive()
-    assert result == [True]
+    cm.update(5000000, PERIOD_NS)
+    assert request.wait(2.0) is True
     assert states(cm)['flap_controller'] == 'running'
     # started at that update: it holds the position it had then
-    assert cm.controller('flap_controller').command == pytest.approx(0.3)
+    assert cm.controller('flap_controller').target == pytest.approx(0.3)
     assert ros.messages(NS + '/flap_controller/state')[0]['stamp'] == 5000000
 
 
@@ -167,7 +167,7 @@ def test_switch_with_timeout_and_no_update_fails_and_is_withdrawn(rig):
     t0 = time.monotonic()
     assert cm.switch_controller(['flap_controller'], [], STRICT, timeout=0.1) is False
     assert time.monotonic() - t0 >= 0.09
-    cm.update(0, 0.001)  # the withdrawn request must not be applied late
+    cm.update(0, PERIOD_NS)  # the withdrawn request must not be applied late
     assert states(cm)['flap_controller'] == 'initialized'
 
 
@@ -180,7 +180,7 @@ def test_strict_refuses_unknown_controller_and_changes_nothing(rig):
     cm, _, _, _ = rig
     cm.load_controller('flap_controller')
     assert cm.switch_controller(['flap_controller', 'ghost'], [], STRICT) is False
-    cm.update(0, 0.001)
+    cm.update(0, PERIOD_NS)
     assert states(cm)['flap_controller'] == 'initialized'
 
 
@@ -208,7 +208,7 @@ def test_strict_refuses_starting_a_running_or_stopping_a_stopped_controller(rig)
     assert cm.switch_controller(['flap_controller'], [], STRICT) is False
     assert cm.switch_controller(['wheel_controller'], ['slider_controller'], STRICT) is False
     assert cm.switch_controller([], ['wheel_controller'], STRICT) is False
-    cm.update(0, 0.001)
+    cm.update(0, PERIOD_NS)
     assert states(cm) == {'flap_controller': 'running', 'wheel_controller': 'initialized'}
     # best effort ignores what is already so
     assert pump_switch(cm, ['flap_controller', 'wheel_controller'], strictness=BEST_EFFORT)[0]
@@ -219,13 +219,13 @@ def test_stop_sets_stopped_and_zeroes_the_effort_command(rig):
     cm, hw, _, _ = rig
     cm.load_controller('flap_controller')
     assert pump_switch(cm, ['flap_controller'])[0]
-    cm.controller('flap_controller').set_command(1.0)
-    cm.update(0, 0.001)
+    cm.controller('flap_controller').set_target(1.0)
+    cm.update(0, PERIOD_NS)
     assert hw.handles['flap_joint'].command != 0.0
     assert pump_switch(cm, [], ['flap_controller'])[0]
     assert states(cm)['flap_controller'] == 'stopped'
     assert hw.handles['flap_joint'].command == 0.0
-    cm.update(0, 0.001)
+    cm.update(0, PERIOD_NS)
     assert hw.handles['flap_joint'].command == 0.0  # not updated any more
 
 
@@ -236,12 +236,12 @@ def test_resource_conflict_is_refused(rig):
     cm.load_controller('joint_state_controller')
     # both at once
     assert cm.switch_controller(['flap_controller', 'flap_other_controller'], [], STRICT) is False
-    cm.update(0, 0.001)
+    cm.update(0, PERIOD_NS)
     assert states(cm)['flap_controller'] == 'initialized'
     # one running, the other asked for
     assert pump_switch(cm, ['flap_controller', 'joint_state_controller'])[0]
     assert cm.switch_controller(['flap_other_controller'], [], BEST_EFFORT) is False
-    cm.update(0, 0.001)
+    cm.update(0, PERIOD_NS)
     assert states(cm)['flap_other_controller'] == 'initialized'
     # handing the joint over in one switch is fine
     assert pump_switch(cm, ['flap_other_controller'], ['flap_controller'])[0]
@@ -278,7 +278,7 @@ def test_update_runs_only_running_controllers(rig):
     n_js = len(ros.messages(NS + '/joint_states'))
     ros.publish(NS + '/flap_controller/command', 0.5)
     ros.publish(NS + '/wheel_controller/command', 0.5)
-    cm.update(10 ** 9, 0.001)
+    cm.update(10 ** 9, PERIOD_NS)
     assert hw.handles['flap_joint'].command == pytest.approx(0.5)
     assert hw.handles['wheel_joint'].command == 0.0
     assert len(ros.messages(NS + '/joint_states')) == n_js + 1
@@ -288,20 +288,16 @@ def switch_concurrently(cm, names, timeout):
     """Each name started by its own STRICT switch_controller call on its own thread (as
     rospy serves service calls), all waiting before physics steps again; then updates
     until the calls return or 3 s pass. Returns {name: result} and whether any still waits."""
-    results = {}
-
-    def call(name):
-        results[name] = cm.switch_controller([name], [], STRICT, timeout)
-
-    threads = [threading.Thread(target=call, args=(n,), daemon=True) for n in names]
-    for t in threads:
-        t.start()
+    requests = {}
+    for name in names:
+        requests[name] = SwitchRequest(cm, [name], [], STRICT, timeout)
         time.sleep(0.05)
     end = time.monotonic() + 3.0
-    while any(t.is_alive() for t in threads) and time.monotonic() < end:
-        cm.update(0, 0.001)
+    while any(r.waiting for r in requests.values()) and time.monotonic() < end:
+        cm.update(0, PERIOD_NS)
         time.sleep(0.002)
-    return results, any(t.is_alive() for t in threads)
+    results = {n: r.result for n, r in requests.items() if not r.waiting}
+    return results, any(r.waiting for r in requests.values())
 
 
 def test_concurrent_switch_requests_are_all_served(rig):
@@ -367,3 +363,46 @@ def test_concurrent_loads_of_one_name_load_it_once(rig):
     assert any('already loaded' in v for v in outcomes.values()), outcomes
     # exactly one live subscriber to the command topic: the loaded controller's
     assert len(ros.subscribers[NS + '/flap_controller/command']) == 1
+
+
+# ----------------------------------------------------------------------------- seams
+def test_every_registered_type_loads_under_its_type_name():
+    assert sorted(CONTROLLER_TYPES) == ControllerManager(None, FakeRos().node_handle,
+                                                         '/x').controller_types()
+    for type_name, cls in CONTROLLER_TYPES.items():
+        assert issubclass(cls, Controller) and cls.type_name == type_name
+
+
+def test_two_classes_with_one_type_name_are_refused():
+    class Other(JointPositionController):
+        pass
+    with pytest.raises(TypeError, match="Other: type_name '%s'" % JPC):
+        by_type_name((JointPositionController, Other))
+
+
+def test_the_controller_owns_its_run_state_and_the_manager_reports_it(rig):
+    cm, _, _, _ = rig
+    c = cm.load_controller('flap_controller')
+    assert c.state == 'initialized'
+    assert pump_switch(cm, ['flap_controller'])[0]
+    assert c.state == 'running' and c.running
+    assert pump_switch(cm, [], ['flap_controller'])[0]
+    assert c.state == 'stopped' and not c.running
+    assert states(cm) == {'flap_controller': 'stopped'}
+
+
+def test_switch_while_updating_gives_up_after_its_deadline_and_says_so(rig):
+    cm, _, _, _ = rig
+    cm.load_controller('flap_controller')
+    with pytest.raises(SwitchTimeout, match=r"start=\['flap_controller'\].*0.2 s"):
+        switch_while_updating(cm, ['flap_controller'], [], lambda: None, deadline=0.2)
+    cm.update(0, PERIOD_NS)  # the call still waiting is served at the next update
+    assert states(cm) == {'flap_controller': 'running'}
+
+
+def test_switch_while_updating_passes_on_what_the_switch_raised():
+    class Broken:
+        def switch_controller(self, start, stop, strictness, timeout):
+            raise ValueError('broken manager')
+    with pytest.raises(ValueError, match='broken manager'):
+        switch_while_updating(Broken(), ['c'], [], lambda: None)

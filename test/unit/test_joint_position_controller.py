@@ -11,6 +11,7 @@ from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos
 
 NS = '/mixed_ns'
 DT = 0.001
+DT_NS = 1000000
 STATE_FIELDS = {'stamp', 'set_point', 'process_value', 'process_value_dot', 'error', 'time_step',
                 'command', 'p', 'i', 'd', 'i_clamp', 'antiwindup'}
 
@@ -33,12 +34,15 @@ class Rig:
         self.hw.read()
 
     def start(self):
-        self.c.starting(self.t)
+        self.c.start_request(self.t)
+
+    def stop(self):
+        self.c.stop_request(self.t)
 
     def update(self, n=1):
         for _ in range(n):
-            self.c.update(self.t, DT)
-            self.t += int(DT * 1e9)
+            self.c.update(self.t, DT_NS)
+            self.t += DT_NS
         return self.hw.handles[self.joint].command
 
     def command(self, value):
@@ -75,7 +79,7 @@ def test_starting_holds_the_current_position_and_drops_earlier_commands():
     rig.at(0.7)
     rig.command(-2.0)  # before start: dropped
     rig.start()
-    assert rig.c.command == pytest.approx(0.7)
+    assert rig.c.target == pytest.approx(0.7)
     assert rig.update() == pytest.approx(0.0)
     assert rig.states()[-1]['set_point'] == pytest.approx(0.7)
 
@@ -85,12 +89,22 @@ def test_restarting_drops_the_old_target():
     rig.start()
     rig.command(1.0)
     rig.update()
-    rig.c.stopping(rig.t)
+    rig.stop()
     rig.command(2.0)  # while stopped: dropped
     rig.at(0.4)
     rig.start()
-    assert rig.c.command == pytest.approx(0.4)
+    assert rig.c.target == pytest.approx(0.4)
     assert rig.update() == pytest.approx(0.0)
+
+
+def test_stopping_leaves_no_effort_on_the_joint():
+    rig = Rig('flap_joint', {'p': 2.0})
+    rig.start()
+    rig.command(1.0)
+    assert rig.update() == pytest.approx(2.0)
+    rig.stop()
+    assert rig.c.state == 'stopped'
+    assert rig.hw.handles['flap_joint'].command == 0.0
 
 
 def test_starting_resets_the_pid():
@@ -99,7 +113,7 @@ def test_starting_resets_the_pid():
     rig.command(1.0)
     rig.update()  # previous error becomes 1.0
     rig.at(0.0)
-    rig.c.stopping(rig.t)
+    rig.stop()
     rig.start()
     rig.command(0.5)
     # after the reset the derivative uses a previous error of 0: (0.5 - 0) / dt
@@ -171,7 +185,7 @@ def test_non_finite_commands_are_ignored_and_the_last_target_held(bad):
     rig.start()
     rig.command(0.5)
     rig.command(bad)
-    assert rig.c.command == pytest.approx(0.5)
+    assert rig.c.target == pytest.approx(0.5)
     effort = rig.update()
     assert effort == pytest.approx(0.5)
     assert rig.states()[-1]['set_point'] == pytest.approx(0.5)

@@ -24,7 +24,7 @@ def make(params, ns='/mixed_ns'):
 def run(c, steps, start_ns=0):
     c.starting(start_ns)
     for k in range(steps):
-        c.update(start_ns + k * STEP_NS, STEP_NS * 1e-9)
+        c.update(start_ns + k * STEP_NS, STEP_NS)
 
 
 def test_publish_rate_is_required_and_named_in_the_error():
@@ -51,7 +51,7 @@ def test_publishes_on_first_update_on_the_robot_namespace():
     robot.set('slider_joint', 0.1, 0.2)
     hw.read()
     c.starting(7 * STEP_NS)
-    c.update(7 * STEP_NS, 0.001)
+    c.update(7 * STEP_NS, STEP_NS)
     msgs = ros.messages('/mixed_ns/joint_states')
     assert len(msgs) == 1
     assert msgs[0]['stamp'] == 7 * STEP_NS

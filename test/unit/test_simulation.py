@@ -2,12 +2,11 @@
 driven through the ControllerManager with fake node handles, as the ROS layer would."""
 import copy
 import math
-import threading
-import time
 
 import pytest
 
 from arm1.control.controller_manager import STRICT, ControllerManager
+from arm1.control.switching import switch_while_updating
 from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.simulation import Simulation, SpawnError
 from conftest import (JPC, MIXED_URDF, WORLD_FILE, FakeRos, box_link, control_plugin,
@@ -36,18 +35,7 @@ def run(sim, seconds):
 
 def switch_while_stepping(sim, cm, start, stop=(), strictness=STRICT):
     """The spawner's switch call, on a service thread, while physics runs."""
-    result = []
-    t = threading.Thread(target=lambda: result.append(
-        cm.switch_controller(list(start), list(stop), strictness)), daemon=True)
-    t.start()
-    end = time.monotonic() + 5.0
-    steps = 0
-    while t.is_alive() and time.monotonic() < end:
-        sim.step()
-        steps += 1
-        t.join(0.0005)
-    assert not t.is_alive(), 'switch_controller never returned'
-    return result[0], steps
+    return switch_while_updating(cm, start, stop, sim.step, strictness, poll=0.0005)
 
 
 def positions(model):

@@ -4,11 +4,11 @@ import copy
 import glob
 import math
 import os
-import threading
 
 import pytest
 
 from arm1.control.controller_manager import ControllerManager
+from arm1.control.switching import SwitchRequest
 from arm1.description.limits import Limits
 from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.simulation import Simulation, SpawnError
@@ -168,15 +168,11 @@ def test_a_switch_waiting_when_its_model_is_deleted_fails_instead_of_hanging(
                                hw, ros.node_handle, ns))
     cm = model.controller_manager
     cm.load_controller('joint1_position_controller')
-    result = []
-    waiter = threading.Thread(target=lambda: result.append(
-        cm.switch_controller(['joint1_position_controller'], [])), daemon=True)
-    waiter.start()  # physics does not step: the switch waits
-    waiter.join(0.2)
-    assert waiter.is_alive()
+    waiter = SwitchRequest(cm, ['joint1_position_controller'])
+    waiter.wait(0.2)  # physics does not step: the switch waits
+    assert waiter.waiting
     sim.delete_model('arm1')
-    waiter.join(2.0)
-    assert result == [False]
+    assert waiter.wait(2.0) is False
 
 
 OFFSET_INERTIA = ('<robot name="plank"><link name="plank"><inertial><origin xyz="0.2 0 0"/>'

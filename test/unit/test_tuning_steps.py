@@ -43,16 +43,16 @@ def one_controller(pid):
 def test_new_gains_apply_at_the_next_update_and_show_in_the_state():
     c, hw, robot, ros = one_controller({'p': 1.0})
     states = ros.record('/ns/c/state')
-    c.starting(0)
+    c.start_request(0)
     ros.publish('/ns/c/command', 0.5)
-    c.update(0, 0.001)
+    c.update(0, 1000000)
     assert hw.handles['flap_joint'].command == pytest.approx(0.5)
     accepted = c.set_gains({'p': 3.0, 'd': 0.0})
     assert accepted['p'] == 3.0 and c.pid.p == 1.0  # not before the update
-    c.update(1000000, 0.001)
+    c.update(1000000, 1000000)
     assert hw.handles['flap_joint'].command == pytest.approx(1.5)
     for _ in range(9):
-        c.update(0, 0.001)
+        c.update(0, 1000000)
     assert states[-1]['p'] == 3.0
 
 

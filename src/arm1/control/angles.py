@@ -1,20 +1,23 @@
 """Angle arithmetic of the ROS ``angles`` package, as the position controllers use it."""
+from __future__ import annotations
+
 import math
+from typing import Tuple
 
 TWO_PI = 2.0 * math.pi
 
 
-def normalize_angle(angle):
+def normalize_angle(angle: float) -> float:
     """Wrap to [-pi, pi]."""
     a = math.fmod(math.fmod(angle, TWO_PI) + TWO_PI, TWO_PI)
     return a - TWO_PI if a > math.pi else a
 
 
-def shortest_angular_distance(from_angle, to_angle):
+def shortest_angular_distance(from_angle: float, to_angle: float) -> float:
     return normalize_angle(to_angle - from_angle)
 
 
-def two_pi_complement(angle):
+def two_pi_complement(angle: float) -> float:
     """The same direction reached by turning the other way round."""
     if abs(angle) > TWO_PI:
         angle = math.fmod(angle, TWO_PI)
@@ -25,7 +28,9 @@ def two_pi_complement(angle):
     return TWO_PI
 
 
-def shortest_angular_distance_with_large_limits(from_angle, to_angle, left_limit, right_limit):
+def shortest_angular_distance_with_large_limits(from_angle: float, to_angle: float,
+                                                left_limit: float,
+                                                right_limit: float) -> Tuple[float, bool]:
     """Shortest turn from ``from_angle`` to ``to_angle`` that stays inside the limits.
 
     Returns ``(distance, ok)``; ``ok`` is False when no turn stays inside, or when

@@ -3,19 +3,24 @@
 Load/unload/switch are called from service threads; ``update`` runs on the
 simulation thread. A switch is queued and takes effect at the next update, and
 the caller waits for it (so while physics is paused it waits, as in Gazebo).
+
+Whether a controller runs is the controller's own ``state`` (as in ros_control's
+ControllerBase); the manager changes it only through start_request / stop_request.
 """
+from __future__ import annotations
+
 import logging
 import math
 import re
 import threading
+from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
 
-from .controller import ControllerError
-from .joint_position_controller import JointPositionController
-from .joint_state_controller import JointStateController
+from .controller import Controller, ControllerError, State
+from .interfaces import NodeFactory, NodeHandle, RobotHW
+from .registry import CONTROLLER_TYPES
 
 log = logging.getLogger('arm1.control')
 
-CONTROLLER_TYPES = {c.type_name: c for c in (JointPositionController, JointStateController)}
 BASE_CLASS = 'controller_interface::ControllerBase'
 
 BEST_EFFORT, STRICT = 1, 2
@@ -31,7 +36,7 @@ def shown(name: str, width: int = 60) -> str:
     return text if len(text) <= width else '%s...(%d characters)' % (text[:width - 20], len(name))
 
 
-def listed(names: list) -> str:
+def listed(names: Sequence[str]) -> str:
     """At most MAX_LISTED quoted names, then how many more."""
     out = ', '.join("'%s'" % shown(n) for n in names[:MAX_LISTED])
     return out + (' and %d more' % (len(names) - MAX_LISTED) if len(names) > MAX_LISTED else '')
@@ -42,30 +47,48 @@ class ControllerManagerError(Exception):
 
 
 class _Loaded:
-    __slots__ = ('name', 'type', 'controller', 'nodes', 'state')
+    __slots__ = ('name', 'type', 'controller', 'nodes')
 
-    def __init__(self, name, type_name, controller, nodes):
+    def __init__(self, name: str, type_name: str, controller: Controller,
+                 nodes: Tuple[NodeHandle, ...]) -> None:
         self.name, self.type, self.controller, self.nodes = name, type_name, controller, nodes
-        self.state = 'initialized'
+
+    @property
+    def state(self) -> State:
+        return self.controller.state
+
+
+class _Switch:
+    """A switch request waiting for the next update."""
+    __slots__ = ('start', 'stop', 'done', 'result')
+
+    def __init__(self, start: List[_Loaded], stop: List[_Loaded]) -> None:
+        self.start, self.stop = start, stop
+        self.done = threading.Event()
+        self.result: List[bool] = []  # filled once, by the update thread or by shutdown
+
+
+# One row of list_controllers: name, type, state, claimed resources.
+ControllerInfo = Tuple[str, str, State, List[Tuple[str, List[str]]]]
 
 
 class ControllerManager:
-    def __init__(self, robot_hw, node_factory, namespace):
-        """``node_factory(namespace)`` returns a node handle (see controller.py)."""
+    def __init__(self, robot_hw: RobotHW, node_factory: NodeFactory, namespace: str) -> None:
+        """``node_factory(namespace)`` returns a node handle (control/interfaces.py)."""
         self.robot_hw = robot_hw
         self.node_factory = node_factory
         self.namespace = namespace.rstrip('/')
         self._lock = threading.Lock()
-        self._loaded = {}  # name -> _Loaded, in load order
-        self._running = ()  # snapshot the update thread iterates
-        self._loading = set()  # names being initialised, so a second load is refused
-        self._pending = []  # switch requests (start, stop, done Event, result), in order
+        self._loaded: Dict[str, _Loaded] = {}  # in load order
+        self._running: Tuple[Controller, ...] = ()  # snapshot the update thread iterates
+        self._loading: Set[str] = set()  # names being initialised: a second load is refused
+        self._pending: List[_Switch] = []  # in order of request
 
     # -- requests (any thread) ------------------------------------------------
-    def controller_types(self):
+    def controller_types(self) -> List[str]:
         return sorted(CONTROLLER_TYPES)
 
-    def load_controller(self, name):
+    def load_controller(self, name: str) -> Controller:
         if not isinstance(name, str) or len(name) > MAX_NAME_LENGTH \
                 or not CONTROLLER_NAME.match(name):
             raise ControllerManagerError(
@@ -74,8 +97,8 @@ class ControllerManager:
                     'most %d characters: letters, digits, _ and /)' % MAX_NAME_LENGTH))
         with self._lock:
             if name in self._loaded or name in self._loading:
-                raise ControllerManagerError(
-                    "A controller named '%s' was already loaded inside the controller manager" % name)
+                raise ControllerManagerError("A controller named '%s' was already loaded inside "
+                                             "the controller manager" % name)
             self._loading.add(name)
         try:
             return self._load(name)
@@ -83,7 +106,7 @@ class ControllerManager:
             with self._lock:
                 self._loading.discard(name)
 
-    def _load(self, name):
+    def _load(self, name: str) -> Controller:
         ns = '%s/%s' % (self.namespace, name)
         controller_nh = self.node_factory(ns)
         type_name = controller_nh.params.get('type')
@@ -91,7 +114,8 @@ class ControllerManager:
             controller_nh.shutdown()
             raise ControllerManagerError(
                 "Could not load controller '%s' because the type was not specified. Did you load "
-                "the controller configuration on the parameter server (namespace: '%s')?" % (name, ns))
+                "the controller configuration on the parameter server (namespace: '%s')?"
+                % (name, ns))
         cls = CONTROLLER_TYPES.get(type_name)
         if cls is None:
             controller_nh.shutdown()
@@ -102,7 +126,7 @@ class ControllerManager:
         controller.name = name
         root_nh = self.node_factory(self.namespace)
         try:
-            controller.init(self.robot_hw, root_nh, controller_nh)
+            controller.init_request(self.robot_hw, root_nh, controller_nh)
         except ControllerError as exc:
             controller_nh.shutdown()
             root_nh.shutdown()
@@ -111,7 +135,7 @@ class ControllerManager:
             self._loaded[name] = _Loaded(name, type_name, controller, (controller_nh, root_nh))
         return controller
 
-    def unload_controller(self, name):
+    def unload_controller(self, name: str) -> None:
         with self._lock:
             entry = self._loaded.get(name)
             if entry is None:
@@ -125,7 +149,8 @@ class ControllerManager:
         for nh in entry.nodes:
             nh.shutdown()
 
-    def switch_controller(self, start, stop, strictness=STRICT, timeout=0.0):
+    def switch_controller(self, start: Sequence[str], stop: Sequence[str],
+                          strictness: int = STRICT, timeout: Optional[float] = 0.0) -> bool:
         """Start and stop controllers at the next update; True when it happened.
 
         ``timeout`` in wall seconds; 0, negative, non-finite or beyond what a wait can take
@@ -134,35 +159,37 @@ class ControllerManager:
             log.warning('switch_controller: strictness %s is neither BEST_EFFORT (1) nor STRICT '
                         '(2); defaulting to BEST_EFFORT', strictness)
             strictness = BEST_EFFORT
-        if not (math.isfinite(timeout) and 0 < timeout < threading.TIMEOUT_MAX):
+        if timeout is None or not (math.isfinite(timeout) and 0 < timeout < threading.TIMEOUT_MAX):
             timeout = None
         with self._lock:
-            start = self._checked(start, 'start', lambda e: e.state != 'running', strictness)
-            stop = self._checked(stop, 'stop', lambda e: e.state == 'running', strictness)
-            if start is None or stop is None:
+            to_start = self._checked(start, 'start', lambda c: not c.running, strictness)
+            to_stop = self._checked(stop, 'stop', lambda c: c.running, strictness)
+            if to_start is None or to_stop is None:
                 return False
-            conflict = self._resource_conflict(start, stop)
+            conflict = self._resource_conflict(to_start, to_stop)
             if conflict:
                 log.error('Could not switch controllers: %s', conflict)
                 return False
-            if not start and not stop:
+            if not to_start and not to_stop:
                 return True
-            done, result = threading.Event(), []
-            self._pending.append((start, stop, done, result))
-        if done.wait(timeout):
-            return result[0]
+            request = _Switch(to_start, to_stop)
+            self._pending.append(request)
+        if request.done.wait(timeout):
+            return request.result[0]
         with self._lock:
-            self._pending = [r for r in self._pending if r[2] is not done]
-        if result:  # applied between the timeout and the withdrawal
-            return result[0]
+            self._pending = [r for r in self._pending if r is not request]
+        if request.result:  # applied between the timeout and the withdrawal
+            return request.result[0]
         log.error('Switching controllers timed out after %.3f s (is physics paused?)', timeout)
         return False
 
-    def _checked(self, names, verb, ok, strictness):
-        out, skipped = [], {}  # why -> names, so a long list of bad names gives one message
+    def _checked(self, names: Sequence[str], verb: str, ok: Callable[[Controller], bool],
+                 strictness: int) -> Optional[List[_Loaded]]:
+        out: List[_Loaded] = []
+        skipped: Dict[str, List[str]] = {}  # why -> names: a long list of bad names, one message
         for name in names:
             entry = self._loaded.get(name)
-            if entry is None or not ok(entry):
+            if entry is None or not ok(entry.controller):
                 why = 'is not loaded' if entry is None else (
                     'is already running' if verb == 'start' else 'is not running')
                 if strictness == STRICT:
@@ -178,10 +205,10 @@ class ControllerManager:
                         why.replace('is ', 'are ') if len(bad) > 1 else why)
         return out
 
-    def _resource_conflict(self, start, stop):
-        owners = {}
+    def _resource_conflict(self, start: List[_Loaded], stop: List[_Loaded]) -> Optional[str]:
+        owners: Dict[Tuple[str, str], str] = {}
         for entry in self._loaded.values():
-            if (entry.state == 'running' and entry not in stop) or entry in start:
+            if (entry.controller.running and entry not in stop) or entry in start:
                 for iface, joints in entry.controller.claimed_resources():
                     for joint in joints:
                         if (iface, joint) in owners:
@@ -190,50 +217,47 @@ class ControllerManager:
                         owners[(iface, joint)] = entry.name
         return None
 
-    def list_controllers(self):
+    def list_controllers(self) -> List[ControllerInfo]:
         """``[(name, type, state, claimed_resources)]`` in load order."""
         with self._lock:
             return [(e.name, e.type, e.state, e.controller.claimed_resources())
                     for e in self._loaded.values()]
 
-    def controller(self, name):
+    def controller(self, name: str) -> Optional[Controller]:
         entry = self._loaded.get(name)
         return entry.controller if entry else None
 
     # -- simulation thread ----------------------------------------------------
-    def update(self, time_ns, period, reset_controllers=False):
+    def update(self, time_ns: int, period_ns: int, reset_controllers: bool = False) -> None:
+        """One control cycle at ``time_ns``, ``period_ns`` of sim time after the last one."""
         if self._pending:
             self._apply_switches(time_ns)
         if reset_controllers:
             for c in self._running:
-                c.stopping(time_ns)
-                c.starting(time_ns)
+                c.stop_request(time_ns)
+                c.start_request(time_ns)
         for c in self._running:
-            c.update(time_ns, period)
+            c.update(time_ns, period_ns)
 
-    def _apply_switches(self, time_ns):
+    def _apply_switches(self, time_ns: int) -> None:
         with self._lock:
             requests, self._pending = self._pending, []
-            for start, stop, _, result in requests:
+            for request in requests:
                 # Checked again here: an earlier request may have claimed the same joints.
-                conflict = self._resource_conflict(start, stop)
+                conflict = self._resource_conflict(request.start, request.stop)
                 if conflict:
                     log.error('Could not switch controllers: %s', conflict)
-                    result.append(False)
+                    request.result.append(False)
                     continue
-                result.append(True)
-                for entry in stop:
-                    entry.controller.stopping(time_ns)
-                    entry.state = 'stopped'
-                    for joint in entry.controller.joints:
-                        joint.command = 0.0  # a stopped effort controller leaves no effort
-                for entry in start:
-                    entry.controller.starting(time_ns)
-                    entry.state = 'running'
+                request.result.append(True)
+                for entry in request.stop:
+                    entry.controller.stop_request(time_ns)
+                for entry in request.start:
+                    entry.controller.start_request(time_ns)
             self._running = tuple(e.controller for e in self._loaded.values()
-                                  if e.state == 'running')
+                                  if e.controller.running)
         for request in requests:
-            request[2].set()
+            request.done.set()
 
     def shutdown(self) -> None:
         """The model is being deleted: stop every controller, release every node handle, and
@@ -242,11 +266,11 @@ class ControllerManager:
             entries, self._loaded = list(self._loaded.values()), {}
             pending, self._pending = self._pending, []
             self._running = ()
-        for _, _, done, result in pending:
-            result.append(False)
-            done.set()
+        for request in pending:
+            request.result.append(False)
+            request.done.set()
         for entry in entries:
-            if entry.state == 'running':
-                entry.controller.stopping(0)
+            if entry.controller.running:
+                entry.controller.stop_request(0)
             for nh in entry.nodes:
                 nh.shutdown()

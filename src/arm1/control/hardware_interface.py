@@ -1,13 +1,17 @@
-"""Joint handles and effort saturation, as hardware_interface and joint_limits_interface have them."""
+"""Joint handles and effort saturation, as hardware_interface and joint_limits_interface
+have them."""
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass, field
+from typing import Optional, Tuple
 
 EFFORT_JOINT_INTERFACE = 'hardware_interface/EffortJointInterface'
 POSITION_JOINT_INTERFACE = 'hardware_interface/PositionJointInterface'
 VELOCITY_JOINT_INTERFACE = 'hardware_interface/VelocityJointInterface'
 
 
-def canonical_interface(name):
+def canonical_interface(name: Optional[str]) -> str:
     """Transmissions may name the interface with or without the ``hardware_interface/`` prefix."""
     name = (name or '').strip()
     return name if '/' in name else 'hardware_interface/' + name
@@ -16,45 +20,53 @@ def canonical_interface(name):
 @dataclass
 class JointLimits:
     """The URDF ``<limit>`` of a joint; a missing bound is None."""
-    lower: float = None
-    upper: float = None
-    effort: float = None
-    velocity: float = None
+    lower: Optional[float] = None
+    upper: Optional[float] = None
+    effort: Optional[float] = None
+    velocity: Optional[float] = None
 
     @property
-    def has_position_limits(self):
+    def has_position_limits(self) -> bool:
         return self.lower is not None and self.upper is not None
 
 
 @dataclass
 class JointHandle:
-    """State read from the simulation and the command a controller writes."""
+    """One joint of the hardware: its state, read from the simulation, and ``command``, the
+    hardware command a controller writes (ros_control's setCommand: an effort here)."""
     name: str
     type: str  # 'revolute', 'continuous' or 'prismatic'
     limits: JointLimits = field(default_factory=JointLimits)
     interface: str = EFFORT_JOINT_INTERFACE
     position: float = 0.0
     velocity: float = 0.0
-    effort: float = 0.0
+    effort: float = 0.0  # the effort last applied, after saturation
     command: float = 0.0
-    claimed_by: str = None
 
 
-def saturation_bounds(limits):
+# (max effort, lower, upper, max velocity)
+SaturationBounds = Tuple[float, float, float, float]
+
+
+def saturation_bounds(limits: JointLimits) -> SaturationBounds:
     """``(max effort, lower, upper, max velocity)`` of JointLimits, inf where there is none."""
     inf = math.inf
+    lower, upper = ((limits.lower, limits.upper)
+                    if limits.lower is not None and limits.upper is not None else (-inf, inf))
     return (limits.effort if limits.effort is not None and limits.effort > 0 else inf,
-            limits.lower if limits.has_position_limits else -inf,
-            limits.upper if limits.has_position_limits else inf,
+            lower, upper,
             limits.velocity if limits.velocity is not None and limits.velocity > 0 else inf)
 
 
-def enforce_effort_limits(command, position, velocity, limits):
-    """gazebo_ros_control's effort saturation for EffortJointInterface joints (see saturate_effort)."""
+def enforce_effort_limits(command: float, position: float, velocity: float,
+                          limits: JointLimits) -> float:
+    """gazebo_ros_control's effort saturation for EffortJointInterface joints
+    (see saturate_effort)."""
     return saturate_effort(command, position, velocity, *saturation_bounds(limits))
 
 
-def saturate_effort(command, position, velocity, max_effort, lower, upper, max_velocity):
+def saturate_effort(command: float, position: float, velocity: float, max_effort: float,
+                    lower: float, upper: float, max_velocity: float) -> float:
     """Clamp to +-max_effort; zero any effort pushing further beyond a position limit or
     further beyond the velocity limit. Bounds come from saturation_bounds, once per joint."""
     if not math.isfinite(command):

@@ -1,12 +1,16 @@
 """effort_controllers/JointPositionController: a PID from position error to effort."""
+from __future__ import annotations
+
 import logging
 import math
 import threading
 import time
+from typing import Any, Dict, Mapping, Optional
 
 from .angles import shortest_angular_distance, shortest_angular_distance_with_large_limits
 from .controller import Controller, ControllerError, require_param
-from .hardware_interface import EFFORT_JOINT_INTERFACE
+from .hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
+from .interfaces import ConfigServer, NodeHandle, Publisher, RobotHW
 from .pid import Pid, PidConfigError
 
 log = logging.getLogger('arm1.control')
@@ -14,27 +18,31 @@ log = logging.getLogger('arm1.control')
 STATE_PUBLISH_DIVIDER = 10  # state goes out every 10th update, as in ros_controllers
 WARN_PERIOD = 5.0  # seconds between repeated warnings of one kind
 GAIN_KEYS = ('p', 'i', 'd', 'i_clamp_max', 'i_clamp_min', 'antiwindup')  # as Pid.gains()
+Gains = Dict[str, Any]  # GAIN_KEYS -> float (bool for antiwindup)
 
 
 class JointPositionController(Controller):
     type_name = 'effort_controllers/JointPositionController'
     interface = EFFORT_JOINT_INTERFACE
 
-    def __init__(self):
+    # Set by init; a controller is only started after a successful init.
+    joint: JointHandle
+    pid: Pid
+    _state_pub: Publisher
+
+    def __init__(self) -> None:
         super().__init__()
-        self.joint = None
-        self.pid = None
-        self.command = 0.0  # target position; written by the command subscriber
-        self._started = False
+        self.target = 0.0  # target position: from the command topic, clamped in update
         self._loop_count = 0
         self._last_warn = -math.inf
         self._clamp_said = False  # the first command outside the limits since start is logged
-        self._state_pub = None
-        self.last_state = None
+        self._lower, self._upper = -math.inf, math.inf
+        self._plain_error = False
         self._gains_lock = threading.Lock()
-        self._pending_gains = None  # set by set_gains (any thread), applied by update
+        # Set by set_gains (any thread), applied by update.
+        self._pending_gains: Optional[Gains] = None
 
-    def init(self, robot_hw, root_nh, controller_nh):
+    def init(self, robot_hw: RobotHW, root_nh: NodeHandle, controller_nh: NodeHandle) -> None:
         ns = controller_nh.namespace
         joint_name = require_param(controller_nh.params, 'joint', ns)
         self.joint = robot_hw.get_handle(joint_name, self.interface, ns)
@@ -45,14 +53,13 @@ class JointPositionController(Controller):
         except PidConfigError as exc:
             raise ControllerError(str(exc))
         self._state_pub = controller_nh.advertise('state', 'control_msgs/JointControllerState', 1)
-        controller_nh.subscribe('command', 'std_msgs/Float64', self.set_command)
+        controller_nh.subscribe('command', 'std_msgs/Float64', self.set_target)
         # Live gains at <controller>/pid, as control_toolbox's Pid serves them with
-        # dynamic_reconfigure; a node handle without ``serve_config`` offers none.
-        serve_config = getattr(controller_nh, 'serve_config', None)
-        if serve_config is not None:
-            serve_config('pid', 'arm1/Pid', self.pid.gains(), self.set_gains)
+        # dynamic_reconfigure; a node handle that is no ConfigServer offers none.
+        if isinstance(controller_nh, ConfigServer):
+            controller_nh.serve_config('pid', 'arm1/Pid', self.pid.gains(), self.set_gains)
 
-    def set_gains(self, gains):
+    def set_gains(self, gains: Mapping[str, Any]) -> Gains:
         """New PID gains (keys of Pid.gains(); missing ones keep their value). Thread-safe:
         they take effect at the next update. Returns the gains that will apply; invalid ones
         (non-finite, i_clamp_min > i_clamp_max) are refused and the gains in force returned."""
@@ -77,16 +84,17 @@ class JointPositionController(Controller):
             self._pending_gains = new
             return dict(new)
 
-    def set_command(self, position):
-        """Called from the ROS thread; a non-finite target is refused and the last one held."""
-        if not self._started:
+    def set_target(self, position: float) -> bool:
+        """The command topic's callback (ROS thread): a new target position. A non-finite one
+        is refused and the last one held; returns whether it was taken."""
+        if not self.running:
             return False  # commands before start are dropped
         if not math.isfinite(position):
             now = time.monotonic()
             if now - self._last_warn > WARN_PERIOD:
                 self._last_warn = now
                 log.warning('%s: ignoring non-finite command %r for joint %s; holding %.4f',
-                            self.name, position, self.joint.name, self.command)
+                            self.name, position, self.joint.name, self.target)
             return False
         if not self._lower <= position <= self._upper and not self._clamp_said:
             # Clamped in update, as ros_control does silently; said once per start so that a
@@ -96,56 +104,57 @@ class JointPositionController(Controller):
                         'clamped to %.4f (said once; later ones are clamped silently)',
                         self.name, position, self.joint.name, self._lower, self._upper,
                         min(max(position, self._lower), self._upper))
-        self.command = float(position)
+        self.target = float(position)
         return True
 
-    def starting(self, time_ns):
-        self.command = self.joint.position
+    def starting(self, time_ns: int) -> None:
+        self.target = self.joint.position
         self.pid.reset()
         self._loop_count = 0
         self._clamp_said = False
-        self._started = True
 
-    def stopping(self, time_ns):
-        self._started = False
+    def stopping(self, time_ns: int) -> None:
+        self.joint.command = 0.0  # an effort controller leaves no effort behind
 
-    def _bind_joint_rules(self):
+    def _bind_joint_rules(self) -> None:
         """Decide once, not every update, how this joint's target is clamped and its error taken."""
         j, lim = self.joint, self.joint.limits
         clamped = j.type in ('revolute', 'prismatic') and lim.has_position_limits
-        self._lower, self._upper = (lim.lower, lim.upper) if clamped else (-math.inf, math.inf)
+        if clamped and lim.lower is not None and lim.upper is not None:
+            self._lower, self._upper = lim.lower, lim.upper
         # For a target clamped inside limits narrower than a full turn, the angles package's
         # shortest distance within the limits is the plain difference: skip the general rule.
         self._plain_error = j.type == 'prismatic' or (
-            j.type == 'revolute' and clamped and lim.upper - lim.lower < 2 * math.pi)
+            j.type == 'revolute' and clamped and self._upper - self._lower < 2 * math.pi)
 
-    def error(self, set_point):
-        j = self.joint
-        if j.type == 'revolute' and j.limits.has_position_limits:
+    def error(self, set_point: float) -> float:
+        j, lim = self.joint, self.joint.limits
+        if j.type == 'revolute' and lim.lower is not None and lim.upper is not None:
             return shortest_angular_distance_with_large_limits(
-                j.position, set_point, j.limits.lower, j.limits.upper)[0]
+                j.position, set_point, lim.lower, lim.upper)[0]
         if j.type == 'continuous':
             return shortest_angular_distance(j.position, set_point)
         return set_point - j.position
 
-    def update(self, time_ns, period):
+    def update(self, time_ns: int, period_ns: int) -> None:
         if self._pending_gains is not None:
             with self._gains_lock:
                 gains, self._pending_gains = self._pending_gains, None
             self.pid.set_gains(gains['p'], gains['i'], gains['d'], gains['i_clamp_max'],
                                gains['i_clamp_min'], gains['antiwindup'])
-        set_point = min(max(self.command, self._lower), self._upper)
+        set_point = min(max(self.target, self._lower), self._upper)
         error = set_point - self.joint.position if self._plain_error else self.error(set_point)
-        effort = self.pid.compute_command(error, period)
+        dt = period_ns * 1e-9  # the PID works in seconds, as control_toolbox's does
+        effort = self.pid.compute_command(error, dt)
         self.joint.command = effort
         if self._loop_count % STATE_PUBLISH_DIVIDER == 0:
-            self.last_state = self._state(time_ns, set_point, error, period, effort)
-            self._state_pub.publish(self.last_state)
+            self._state_pub.publish(self._state(time_ns, set_point, error, dt, effort))
         self._loop_count += 1
 
-    def _state(self, time_ns, set_point, error, period, effort):
+    def _state(self, time_ns: int, set_point: float, error: float, dt: float,
+               effort: float) -> Dict[str, Any]:
         pid = self.pid
         return dict(stamp=time_ns, set_point=set_point, process_value=self.joint.position,
-                    process_value_dot=self.joint.velocity, error=error, time_step=period,
+                    process_value_dot=self.joint.velocity, error=error, time_step=dt,
                     command=effort, p=pid.p, i=pid.i, d=pid.d, i_clamp=pid.i_max,
                     antiwindup=pid.antiwindup)

@@ -1,5 +1,11 @@
-"""The PID of control_toolbox::Pid, with its integral clamp and antiwindup rules."""
+"""The PID of control_toolbox::Pid, with its integral clamp and antiwindup rules.
+
+Time steps ``dt`` are in seconds (control_toolbox takes a ros::Duration and uses toSec()).
+"""
+from __future__ import annotations
+
 import math
+from typing import Any, Dict
 
 
 class PidConfigError(ValueError):
@@ -14,12 +20,13 @@ class Pid:
     and i != 0 the accumulated error is clamped to [i_min/i, i_max/i].
     """
 
-    def __init__(self, p=0.0, i=0.0, d=0.0, i_max=0.0, i_min=0.0, antiwindup=False):
+    def __init__(self, p: float = 0.0, i: float = 0.0, d: float = 0.0, i_max: float = 0.0,
+                 i_min: float = 0.0, antiwindup: bool = False) -> None:
         self.set_gains(p, i, d, i_max, i_min, antiwindup)
         self.reset()
 
     @classmethod
-    def from_params(cls, params, namespace=''):
+    def from_params(cls, params: Any, namespace: str = '') -> Pid:
         """Build from a ``pid`` parameter dict (p required; i, d, i_clamp* optional)."""
         if not isinstance(params, dict) or 'p' not in params:
             raise PidConfigError('No p gain specified for pid.  Namespace: %s' % namespace)
@@ -34,31 +41,33 @@ class Pid:
             raise PidConfigError('Bad pid gain under %s: %s' % (namespace, exc))
         return cls(p, i, d, i_max, i_min, bool(params.get('antiwindup', False)))
 
-    def set_gains(self, p, i, d, i_max, i_min, antiwindup=False):
+    def set_gains(self, p: float, i: float, d: float, i_max: float, i_min: float,
+                  antiwindup: bool = False) -> None:
         self.p, self.i, self.d = float(p), float(i), float(d)
         self.i_max, self.i_min = float(i_max), float(i_min)
         self.antiwindup = bool(antiwindup)
 
-    def gains(self):
+    def gains(self) -> Dict[str, Any]:
         return dict(p=self.p, i=self.i, d=self.d, i_clamp_max=self.i_max,
                     i_clamp_min=self.i_min, antiwindup=self.antiwindup)
 
-    def reset(self):
+    def reset(self) -> None:
         self.p_error_last = 0.0
         self.p_error = 0.0
         self.i_error = 0.0
         self.d_error = 0.0
         self.cmd = 0.0
 
-    def compute_command(self, error, dt):
-        """Effort for this error over a period of ``dt`` seconds (derivative by finite difference)."""
+    def compute_command(self, error: float, dt: float) -> float:
+        """Effort for this error over a period of ``dt`` seconds (derivative by finite
+        difference)."""
         if dt == 0.0 or not math.isfinite(error):
             return 0.0
         error_dot = (error - self.p_error_last) / dt
         self.p_error_last = error
         return self.compute_command_with_rate(error, error_dot, dt)
 
-    def compute_command_with_rate(self, error, error_dot, dt):
+    def compute_command_with_rate(self, error: float, error_dot: float, dt: float) -> float:
         self.p_error = error
         self.d_error = error_dot
         if dt == 0.0 or not (math.isfinite(error) and math.isfinite(error_dot)):

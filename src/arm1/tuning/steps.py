@@ -23,11 +23,11 @@ step; step 0.3 rad, settle 0.5 s, hold 2 s (4.5 s of simulated time per run).
 """
 import copy
 import math
-import threading
 from dataclasses import dataclass, field
 
 from ..control.controller_manager import STRICT, ControllerManager
 from ..control.joint_position_controller import JointPositionController
+from ..control.switching import switch_while_updating
 from ..description.sdf_world import WorldConfig, read_world
 from ..simulation import Simulation
 from .local_ros import LocalRos
@@ -128,7 +128,7 @@ class StepRig:
             name, urdf_xml, find_package=find_package,
             controller_manager_factory=lambda hw, ns: ControllerManager(
                 hw, self.ros.node_handle, ns))
-        if self.model.controller_manager is None:
+        if self.model.controller_manager is None or self.model.hw is None:
             raise ValueError("robot '%s' has no gazebo_ros_control plugin: nothing to tune" % name)
         self.cm = self.model.controller_manager
         self.hw = self.model.hw
@@ -139,6 +139,7 @@ class StepRig:
             spec = ns_params[cname]
             if isinstance(spec, dict) and spec.get('type') == JPC:
                 controller = self.cm.load_controller(cname)
+                assert isinstance(controller, JointPositionController)  # its type says so
                 self.controllers[controller.joint.name] = cname
         if not self.controllers:
             raise ValueError('no %s under %s in the controllers parameters' % (JPC, self.namespace))
@@ -149,19 +150,18 @@ class StepRig:
 
     def _switch(self, start):
         """controller_manager's switch (it waits for an update, as in Gazebo)."""
-        result = []
-        t = threading.Thread(target=lambda: result.append(
-            self.cm.switch_controller(start, [], STRICT, 0.0)), daemon=True)
-        t.start()
         self.hw.read()
-        while t.is_alive():
-            self.cm.update(self.sim.time_ns, 0.0)  # period 0: no effort, no physics
-            t.join(0.001)
-        if not result or not result[0]:
+        # Updates of period 0 at the present time: no effort, no physics step.
+        ok, _ = switch_while_updating(self.cm, start, [],
+                                      lambda: self.cm.update(self.sim.time_ns, 0), STRICT,
+                                      deadline=None)
+        if not ok:
             raise RuntimeError('could not start the controllers %s' % ', '.join(start))
 
-    def controller(self, joint):
-        return self.cm.controller(self.controllers[joint])
+    def controller(self, joint: str) -> JointPositionController:
+        controller = self.cm.controller(self.controllers[joint])
+        assert isinstance(controller, JointPositionController)
+        return controller
 
     def limits(self, joint):
         lim = self.hw.handles[joint].limits
@@ -197,7 +197,7 @@ class StepRig:
         self.sim.set_model_configuration(self.model.name, list(pose), list(pose.values()))
         self.hw.read()
         # gazebo_ros_control's reset: stop and start the running controllers
-        self.cm.update(self.sim.time_ns, 0.0, reset_controllers=True)
+        self.cm.update(self.sim.time_ns, 0, reset_controllers=True)
 
     def run(self, joint, protocol, gains=None, abort=None):
         """One protocol run for ``joint``; ``gains`` overrides that joint's gains.

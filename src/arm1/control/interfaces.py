@@ -1,0 +1,78 @@
+"""The seams of the control layer: what controllers need from the outside, as Protocols.
+
+Controllers talk to ROS through node handles given to ``init``: ``root_nh`` (the robot
+namespace, e.g. ``/arm1``) and ``controller_nh`` (the controller's own, e.g.
+``/arm1/joint1_position_controller``). Three implementations exist: ros/node_handle.py
+(rospy), tuning/local_ros.py (in-process, for the tuner) and the unit tests' fake; the
+controller manager's ``node_factory`` type makes mypy hold each of them to this contract.
+Joints come from a RobotHW (robot_hw_sim.py simulates one).
+"""
+from __future__ import annotations
+
+from typing import Any, Callable, Dict, List, Mapping, Optional, Protocol, runtime_checkable
+
+from .hardware_interface import JointHandle
+
+# What a controller publishes: message fields by name, plain Python values; a ``stamp``
+# is integer nanoseconds of sim time. The ROS node handle turns them into a message.
+Fields = Mapping[str, Any]
+Params = Dict[str, Any]  # a parameter subtree, as ``rosparam get <namespace>`` gives it
+
+
+class Publisher(Protocol):
+    def publish(self, fields: Fields) -> None: ...
+
+
+class NodeHandle(Protocol):
+    """ros::NodeHandle as controllers use it."""
+
+    namespace: str  # absolute, without a trailing '/' ('/' for the root)
+    params: Params  # the parameters under ``namespace`` ({} when there are none)
+
+    def advertise(self, topic: str, type_name: str, queue_size: int) -> Publisher: ...
+
+    def subscribe(self, topic: str, type_name: str, callback: Callable[[Any], object]) -> object:
+        """``callback`` gets the message's ``data`` (e.g. a float for std_msgs/Float64)."""
+        ...
+
+    def shutdown(self) -> None:
+        """Withdraw every publisher, subscriber and server made through this handle."""
+        ...
+
+
+@runtime_checkable
+class ConfigServer(Protocol):
+    """A node handle that also offers live parameters (dynamic_reconfigure); optional."""
+
+    def serve_config(self, namespace: str, type_name: str, current: Dict[str, Any],
+                     on_change: Callable[[Dict[str, Any]], Dict[str, Any]]) -> object:
+        """Serve ``current`` at ``namespace``; ``on_change(values)`` returns the values in force."""
+        ...
+
+
+NodeFactory = Callable[[str], NodeHandle]  # namespace -> node handle
+
+
+class RobotHW(Protocol):
+    """hardware_interface::RobotHW as controllers use it: joint handles by name."""
+
+    def joint_names(self) -> List[str]:
+        """Sorted, as hardware_interface's std::map gives them."""
+        ...
+
+    def get_handle(self, name: str, interface: Optional[str], controller_ns: str) -> JointHandle:
+        """The handle of joint ``name`` offering ``interface`` (None: any); raises
+        ControllerError naming the joint and ``controller_ns`` when there is none."""
+        ...
+
+
+class RobotHWSim(RobotHW, Protocol):
+    """gazebo_ros_control's RobotHWSim: a RobotHW bound to a simulated robot."""
+
+    def read(self) -> None:
+        """Joint state from the simulation into the handles."""
+        ...
+
+    def write(self) -> None:
+        """The handles' commands, saturated, to the simulation."""
+        ...

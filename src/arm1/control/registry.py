@@ -1,0 +1,31 @@
+"""The controller types a controller manager can load, by their ``type`` parameter.
+
+What pluginlib's controller_plugins.xml is to ros_control: a new type is its own module
+(a Controller subclass naming its ``type_name`` and ``interface``), imported here and
+listed in CONTROLLER_CLASSES.
+"""
+from __future__ import annotations
+
+from typing import Dict, Tuple, Type
+
+from .controller import Controller
+from .joint_position_controller import JointPositionController
+from .joint_state_controller import JointStateController
+
+CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = (
+    JointPositionController,
+    JointStateController,
+)
+
+
+def by_type_name(classes: Tuple[Type[Controller], ...]) -> Dict[str, Type[Controller]]:
+    types: Dict[str, Type[Controller]] = {}
+    for cls in classes:
+        if not cls.type_name or cls.type_name in types:
+            raise TypeError('%s: type_name %r is empty or already taken'
+                            % (cls.__name__, cls.type_name))
+        types[cls.type_name] = cls
+    return types
+
+
+CONTROLLER_TYPES = by_type_name(CONTROLLER_CLASSES)
