@@ -3,11 +3,11 @@ and listeners in another process (as robot_state_publisher would be)."""
 from __future__ import annotations
 
 import subprocess
-import threading
 from typing import TYPE_CHECKING, List, Optional, Tuple
 
 import yaml
 
+from ..control.switching import SwitchRequest
 from .arm import CONTROLLERS, NAMES, WORLD, arm1_urdf
 
 if TYPE_CHECKING:
@@ -41,9 +41,9 @@ def start_standin(arms: int, real_time_update_rate: Optional[float]
         for name in NAMES:
             manager.load_controller(name)
         managers.append(manager)
-    # A switch waits for the next update: ask from a thread, the world loop does it.
-    threading.Thread(target=lambda: [m.switch_controller(NAMES, []) for m in managers],
-                     daemon=True).start()
+    # A switch waits for the next update: ask from threads, the world loop does it.
+    for manager in managers:
+        SwitchRequest(manager, NAMES)
     return node, pacer
 
 
