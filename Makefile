@@ -149,7 +149,7 @@ build: $(STAMPS)/venv link-package
 	@touch $(STAMPS)/build
 
 demo: setup
-	$(WS_SHELL) python3 -m arm1.demo
+	$(WS_SHELL) python3 -m arm1.session.demo
 
 test: setup
 	$(WS_SHELL) python test/run_all.py

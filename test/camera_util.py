@@ -11,7 +11,7 @@ from geometry_msgs.msg import Pose
 from sensor_msgs.msg import Image
 from std_msgs.msg import Float64
 
-from arm1.image import is_uniform
+from arm1.goal.image import is_uniform
 from rostest_util import JOINTS, positions, wait_for
 
 UP = (0.0, 1.57, 0.0, 0.0)  # arm upright: the camera at its tip sees only the sky

@@ -9,7 +9,7 @@ import tempfile
 import numpy as np
 import rospkg
 
-from arm1.image import png
+from arm1.goal.image import png
 
 SCREEN = (1024, 768)
 

@@ -66,7 +66,7 @@ PACKAGES = {
     'controller_manager': ("Stand-in for controller_manager's spawner, backed by arm1's "
                            'controller managers.', {'spawner': 'arm1.ros.spawner'}),
     'xacro': ('Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '
-              'package path.', {'xacro': 'arm1.xacro_bridge'}),
+              'package path.', {'xacro': 'arm1.ros.xacro_bridge'}),
 }
 
 

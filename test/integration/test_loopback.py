@@ -9,7 +9,7 @@ import psutil
 import pytest
 import rosgraph
 
-from arm1.launcher import RosSession, listening_addresses, loopback_env, node_pid
+from arm1.session.launcher import RosSession, listening_addresses, loopback_env, node_pid
 
 LOOPBACK = '127.0.0.1'
 

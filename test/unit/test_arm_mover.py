@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from arm1.arm_nodes import clamp_request, describe, joint_limits, off_target
+from arm1.goal.arm_mover import clamp_request, describe, joint_limits, off_target
 
 ARM1_RANGES = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
                'joint4': (-0.8, 1.57)}

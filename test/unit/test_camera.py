@@ -12,8 +12,8 @@ import pybullet as p
 import pytest
 from PIL import Image
 
-from arm1.image import is_uniform, png
-from arm1.pacer import Pacer
+from arm1.goal.image import is_uniform, png
+from arm1.sim.pacer import Pacer
 from arm1.physics import sensor_manager
 from arm1.description.camera_sensor import CameraSensor, camera_sensors
 from arm1.physics.camera_geometry import intrinsics, view_matrix
@@ -22,7 +22,7 @@ from arm1.physics.sensor_manager import Camera, SensorManager
 from arm1.description.limits import LimitError, Limits
 from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.simulation import Simulation, SpawnError
+from arm1.sim.simulation import Simulation, SpawnError
 from conftest import WORLD_FILE, box_link
 
 STEP_NS = 1000000  # 1 ms physics step

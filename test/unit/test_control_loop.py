@@ -10,8 +10,8 @@ from arm1.control.loop import ControlLoop, control_period_ns
 from arm1.control.switching import switch_while_updating
 from arm1.description.sdf_world import WorldConfig
 from arm1.description.urdf_model import parse_urdf
-from arm1.robot_hw_sim import DefaultRobotHWSim
-from arm1.simulation import Simulation
+from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+from arm1.sim.simulation import Simulation
 from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos, mixed_params
 
 NS = '/mixed_ns'

@@ -11,7 +11,7 @@ from arm1.control.joint_position_controller import JointPositionController
 from arm1.control.registry import CONTROLLER_TYPES, by_type_name
 from arm1.control.switching import SwitchRequest, SwitchTimeout, switch_while_updating
 from arm1.description.urdf_model import parse_urdf
-from arm1.robot_hw_sim import DefaultRobotHWSim
+from arm1.sim.robot_hw_sim import DefaultRobotHWSim
 from conftest import JPC, JSC, MIXED_URDF, FakeRobot, FakeRos, pump_switch
 
 NS = '/mixed_ns'

@@ -7,7 +7,7 @@ from arm1.control.controller import ControllerError
 from arm1.control.hardware_interface import (EFFORT_JOINT_INTERFACE, JointLimits,
                                              canonical_interface, enforce_effort_limits)
 from arm1.description.urdf_model import parse_urdf
-from arm1.robot_hw_sim import DefaultRobotHWSim
+from arm1.sim.robot_hw_sim import DefaultRobotHWSim
 from conftest import MIXED_URDF, FakeRobot
 
 ARM1_LIMITS = JointLimits(lower=-1.57, upper=1.57, effort=1.0, velocity=0.5)

@@ -4,7 +4,7 @@ import pytest
 from arm1.control.controller import ControllerError
 from arm1.control.joint_state_controller import JointStateController
 from arm1.description.urdf_model import parse_urdf
-from arm1.robot_hw_sim import DefaultRobotHWSim
+from arm1.sim.robot_hw_sim import DefaultRobotHWSim
 from conftest import JSC, MIXED_URDF, FakeRobot, FakeRos
 
 STEP_NS = 1000000  # 1 ms

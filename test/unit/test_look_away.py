@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from arm1.arm_nodes import LookAwayPolicy
-from arm1.image import is_uniform
+from arm1.goal.look_away import LookAwayPolicy
+from arm1.goal.image import is_uniform
 
 
 def image(pixels, step=None):

@@ -1,7 +1,7 @@
 """pacer.py with a fake clock: wall_period, Pacer, RealTimeFactorMeter."""
 import pytest
 
-from arm1.pacer import Pacer, RealTimeFactorMeter, wall_period
+from arm1.sim.pacer import Pacer, RealTimeFactorMeter, wall_period
 
 
 class FakeClock:

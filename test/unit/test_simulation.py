@@ -8,7 +8,7 @@ import pytest
 from arm1.control.controller_manager import STRICT, ControllerManager
 from arm1.control.switching import switch_while_updating
 from arm1.description.sdf_world import WorldConfig, read_world
-from arm1.simulation import Simulation, SpawnError
+from arm1.sim.simulation import Simulation, SpawnError
 from conftest import (JPC, MIXED_URDF, WORLD_FILE, FakeRos, box_link, control_plugin,
                       mixed_params, transmission)
 

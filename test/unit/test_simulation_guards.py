@@ -11,7 +11,7 @@ from arm1.control.controller_manager import ControllerManager
 from arm1.control.switching import SwitchRequest
 from arm1.description.limits import Limits
 from arm1.description.sdf_world import WorldConfig, read_world
-from arm1.simulation import Simulation, SpawnError
+from arm1.sim.simulation import Simulation, SpawnError
 from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, pump_switch
 
 CRATE = '<robot name="crate">%s</robot>' % box_link('crate')

@@ -6,7 +6,7 @@ import pytest
 
 from arm1.control.joint_position_controller import JointPositionController
 from arm1.description.urdf_model import parse_urdf
-from arm1.robot_hw_sim import DefaultRobotHWSim
+from arm1.sim.robot_hw_sim import DefaultRobotHWSim
 from arm1.tuning.save import with_gains
 from arm1.tuning.local_ros import LocalRos
 from arm1.tuning.metrics import worst

@@ -15,7 +15,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 from tqdm import tqdm
 
-from ..launcher import RosSession
+from ..session.launcher import RosSession
 from ..paths import repo_root
 from .probes import machine
 from .report import write_markdown, write_plot

@@ -13,7 +13,7 @@ STEP = 0.001  # s, the world file's max_step_size
 
 def arm1_urdf(namespace: str = '/arm1') -> str:
     """arm1's URDF (xacro expanded) with its control plugin in ``namespace``."""
-    from ..xacro_bridge import expand
+    from ..ros.xacro_bridge import expand
     xml = expand(XACRO)
     return xml.replace('<robotNamespace>/arm1</robotNamespace>',
                        '<robotNamespace>%s</robotNamespace>' % namespace)

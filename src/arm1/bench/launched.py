@@ -21,7 +21,7 @@ def startup() -> Dict[str, Any]:
     """Wall seconds from starting roslaunch to the first /arm1/joint_states (master included)."""
     import rospy
 
-    from ..launcher import RosSession
+    from ..session.launcher import RosSession
     session = RosSession()
     session.activate()
     with session:
@@ -40,7 +40,7 @@ def realtime(seconds: float) -> Dict[str, float]:
     from rosgraph_msgs.msg import Clock
     from sensor_msgs.msg import JointState
 
-    from ..launcher import RosSession, node_pid
+    from ..session.launcher import RosSession, node_pid
     session = RosSession()
     session.activate()
     with session:

@@ -363,7 +363,7 @@ def source_state() -> str:
 def run(minutes: float, warmup_s: float) -> Tuple[List[dict], Optional[str]]:
     """Start everything, sample until the time is up; (samples, why it stopped early or None)."""
     import rospy
-    from ..launcher import RosSession, node_pid
+    from ..session.launcher import RosSession, node_pid
     session = RosSession()
     session.activate()
     samples: List[dict] = []

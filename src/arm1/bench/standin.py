@@ -11,7 +11,7 @@ from ..control.switching import SwitchRequest
 from .arm import CONTROLLERS, NAMES, WORLD, arm1_urdf
 
 if TYPE_CHECKING:
-    from ..pacer import Pacer
+    from ..sim.pacer import Pacer
     from ..ros.world_node import WorldNode
 
 

@@ -8,7 +8,7 @@ import sys
 import rospy
 from sensor_msgs.msg import Image
 
-from ..image import PNG_TYPES, png
+from ..goal.image import PNG_TYPES, png
 
 
 def main(argv=None):

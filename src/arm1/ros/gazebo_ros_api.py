@@ -13,7 +13,7 @@ from gazebo_msgs.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from std_srvs.srv import Empty
 
 from ..description.names import shown
-from ..simulation import Model, PreparedUrdf, Simulation, SpawnError
+from ..sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
 from .camera_plugin import GazeboRosCamera
 from .controller_manager_services import ControllerManagerServices
 from .packages import find_package

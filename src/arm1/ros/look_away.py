@@ -12,8 +12,8 @@ from sensor_msgs.msg import Image, JointState
 
 from arm1.srv import GoToPosition
 
-from ..arm_nodes import LookAwayPolicy
-from ..image import is_uniform
+from ..goal.look_away import LookAwayPolicy
+from ..goal.image import is_uniform
 
 # Camera along the arm, pitched 0.2 rad down: the horizon in the upper third.
 DEFAULT_POSE = [0.0, 0.6, -0.4, -0.4]

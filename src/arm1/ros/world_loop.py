@@ -5,8 +5,8 @@ import time
 
 import rospy
 
-from ..pacer import Pacer
-from ..simulation import Simulation
+from ..sim.pacer import Pacer
+from ..sim.simulation import Simulation
 from .sim_clock import SimClock
 from .sim_thread import SimThreadCalls
 

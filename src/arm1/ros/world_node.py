@@ -11,10 +11,10 @@ from typing import List, Optional, Sequence, Tuple
 
 import rospy
 
-from ..pacer import Pacer, wall_period
+from ..sim.pacer import Pacer, wall_period
 from ..description.limits import LimitError, Limits
 from ..description.sdf_world import SdfError, WorldConfig, read_world
-from ..simulation import Model, Simulation
+from ..sim.simulation import Model, Simulation
 from .gazebo_ros_api import GazeboRosApi
 from .master_watch import MasterWatch
 from .node_handle import route_core_logs

@@ -12,7 +12,7 @@ Usable without ROS: when rospkg is missing or does not know the package,
 import os
 import sys
 
-from .paths import repo_root
+from ..paths import repo_root
 
 _rospack = None
 

@@ -86,7 +86,7 @@ def main(argv=None):
     session = RosSession()
     session.activate()
     import rospy
-    from .description.urdf_model import parse_urdf
+    from ..description.urdf_model import parse_urdf
     with session:
         print('starting: roslaunch arm1 gazebo.launch gui:=false; rosrun arm1 simple_mover')
         session.roslaunch('arm1', 'gazebo.launch', 'gui:=false')

@@ -8,8 +8,8 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING, Dict, List, Optional, Protocol, Sequence, Tuple
 
-from .control.controller import ControllerError
-from .control.hardware_interface import (
+from ..control.controller import ControllerError
+from ..control.hardware_interface import (
     EFFORT_JOINT_INTERFACE,
     JointHandle,
     SaturationBounds,
@@ -18,7 +18,7 @@ from .control.hardware_interface import (
 )
 
 if TYPE_CHECKING:
-    from .description.urdf_model import RobotModel
+    from ..description.urdf_model import RobotModel
 
 log = logging.getLogger('arm1.control')
 

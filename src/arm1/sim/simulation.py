@@ -12,16 +12,16 @@ import tempfile
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
-from .control.controller_manager import ControllerManager
-from .control.loop import ControlLoop, control_period_ns
-from .description.camera_sensor import CameraSensor, camera_sensors
-from .description.limits import LimitError
-from .description.names import IllegalName, check_name, shown
-from .physics.robot import Robot, RobotLoadError
-from .physics.sensor_manager import Camera, SensorManager
-from .description.sdf_world import WorldConfig
-from .description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
-from .physics.world import World
+from ..control.controller_manager import ControllerManager
+from ..control.loop import ControlLoop, control_period_ns
+from ..description.camera_sensor import CameraSensor, camera_sensors
+from ..description.limits import LimitError
+from ..description.names import IllegalName, check_name, shown
+from ..physics.robot import Robot, RobotLoadError
+from ..physics.sensor_manager import Camera, SensorManager
+from ..description.sdf_world import WorldConfig
+from ..description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
+from ..physics.world import World
 from .robot_hw_sim import DefaultRobotHWSim
 
 

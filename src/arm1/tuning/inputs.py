@@ -8,7 +8,7 @@ from typing import Any, Dict, List, Optional
 
 import yaml
 
-from .. import xacro_bridge
+from ..ros import xacro_bridge
 from ..paths import repo_root
 from .metrics import Criteria
 from .steps import ARM1_POSES, ARM1_START, Protocol, StepRig

@@ -29,7 +29,7 @@ from ..control.controller_manager import STRICT, ControllerManager
 from ..control.joint_position_controller import JointPositionController
 from ..control.switching import switch_while_updating
 from ..description.sdf_world import WorldConfig, read_world
-from ..simulation import Simulation
+from ..sim.simulation import Simulation
 from .local_ros import LocalRos
 from .metrics import FINAL_WINDOW, step_metrics
 

@@ -1,0 +1,1 @@
+"""The seed's goal, free of ROS: what arm_mover and look_away decide, and the image test."""
