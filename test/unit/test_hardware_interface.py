@@ -4,8 +4,8 @@ import math
 import pytest
 
 from arm1.control.controller import ControllerError
-from arm1.control.hardware_interface import (EFFORT_JOINT_INTERFACE, JointLimits,
-                                             canonical_interface, enforce_effort_limits)
+from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE, enforce_effort_limits
+from arm1.description.joint_limits import JointLimits, canonical_interface
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.robot_hw_sim import DefaultRobotHWSim
 from conftest import MIXED_URDF, FakeRobot

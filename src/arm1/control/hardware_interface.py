@@ -4,30 +4,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Optional, Tuple
+from typing import Tuple
 
-EFFORT_JOINT_INTERFACE = 'hardware_interface/EffortJointInterface'
-POSITION_JOINT_INTERFACE = 'hardware_interface/PositionJointInterface'
-VELOCITY_JOINT_INTERFACE = 'hardware_interface/VelocityJointInterface'
-
-
-def canonical_interface(name: Optional[str]) -> str:
-    """Transmissions may name the interface with or without the ``hardware_interface/`` prefix."""
-    name = (name or '').strip()
-    return name if '/' in name else 'hardware_interface/' + name
-
-
-@dataclass
-class JointLimits:
-    """The URDF ``<limit>`` of a joint; a missing bound is None."""
-    lower: Optional[float] = None
-    upper: Optional[float] = None
-    effort: Optional[float] = None
-    velocity: Optional[float] = None
-
-    @property
-    def has_position_limits(self) -> bool:
-        return self.lower is not None and self.upper is not None
+from ..description.joint_limits import EFFORT_JOINT_INTERFACE, JointLimits
 
 
 @dataclass

@@ -12,8 +12,8 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Optional, Union
 
-from ..control.hardware_interface import JointLimits, canonical_interface
 from . import safe_xml
+from .joint_limits import JointLimits, canonical_interface
 from .limits import LimitError, Limits
 from .mesh_limits import MESH_EXTENSIONS, MeshError, count_triangles, mesh_kind
 from .names import shown
