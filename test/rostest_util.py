@@ -1,11 +1,11 @@
 """Helpers the rostest nodes share: collecting messages and waiting in sim or wall time."""
 import threading
 import time
+import unittest
 
 import rospy
 from controller_manager_msgs.srv import ListControllers
-from rosgraph_msgs.msg import Clock
-from rosgraph_msgs.msg import Log
+from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState
 
 JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
@@ -73,7 +73,41 @@ def wait_for_controllers(count=5, ns='/arm1', timeout=60):
     name = ns + '/controller_manager/list_controllers'
     rospy.wait_for_service(name, timeout)
     list_controllers = rospy.ServiceProxy(name, ListControllers)
-    running = lambda: sum(c.state == 'running' for c in list_controllers().controller)
+
+    def running():
+        return sum(c.state == 'running' for c in list_controllers().controller)
     assert wait_for(lambda: running() >= count, timeout), \
         'only %d of %d controllers running in %s' % (running(), count, ns)
     return list_controllers
+
+
+RECORDERS = {'states': joint_recorder, 'clock': clock_recorder, 'rosout': rosout_recorder}
+FIRST_MESSAGE = {'states': ('joint_states', 60), 'clock': ('/clock', 30)}  # (what, timeout s)
+
+
+class WorldTestCase(unittest.TestCase):
+    """A rostest against a running world. setUpClass starts the test node NODE, keeps a
+    recorder for each name in RECORD ('states', 'clock', 'rosout') as a class attribute of
+    that name, waits for each service in SERVICES, for the first message of each recorder
+    in FIRST, and for CONTROLLERS controllers running in /arm1 (then ``list_controllers``
+    is their proxy). A test class extends it with ``super().setUpClass()``."""
+
+    NODE = ''
+    RECORD = ()
+    SERVICES = ()
+    FIRST = ()
+    CONTROLLERS = 0
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node(cls.NODE)
+        for name in cls.RECORD:
+            setattr(cls, name, RECORDERS[name]())
+        for service in cls.SERVICES:
+            rospy.wait_for_service(service, 60)
+        for name in cls.FIRST:
+            what, timeout = FIRST_MESSAGE[name]
+            recorder = getattr(cls, name)
+            assert wait_for(lambda: recorder.last() is not None, timeout), 'no ' + what
+        if cls.CONTROLLERS:
+            cls.list_controllers = wait_for_controllers(cls.CONTROLLERS)

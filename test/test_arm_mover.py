@@ -3,7 +3,6 @@
 import os
 import sys
 import time
-import unittest
 
 import rospy
 import rostest
@@ -11,22 +10,23 @@ from std_srvs.srv import Empty
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import JointCommander  # noqa: E402
-from rostest_util import joint_recorder, rosout_recorder, wait_for  # noqa: E402
+from rostest_util import WorldTestCase, wait_for  # noqa: E402
+
 from arm1.srv import GoToPosition  # noqa: E402
 
 
-class ArmMover(unittest.TestCase):
+class ArmMover(WorldTestCase):
+    NODE = 'test_arm_mover'
+    RECORD = ('states', 'rosout')
+    SERVICES = ('/arm_mover/safe_move', '/arm_mover_tight/safe_move')
+    FIRST = ('states',)
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_arm_mover')
-        cls.states = joint_recorder()
-        cls.rosout = rosout_recorder()
+        super().setUpClass()
         cls.arm = JointCommander(cls.states)
-        for name in ('/arm_mover/safe_move', '/arm_mover_tight/safe_move'):
-            rospy.wait_for_service(name, 60)
         cls.safe_move = rospy.ServiceProxy('/arm_mover/safe_move', GoToPosition)
         cls.tight = rospy.ServiceProxy('/arm_mover_tight/safe_move', GoToPosition)
-        assert wait_for(lambda: cls.states.last() is not None, 60), 'no joint_states'
 
     def test_01_moves_and_returns_the_elapsed_time(self):
         for pose in ((0.5, 0.6, -0.4, -0.4), (-0.5, 1.2, 0.3, 0.0)):

@@ -4,7 +4,6 @@ import os
 import subprocess
 import sys
 import time
-import unittest
 
 import rospy
 import rostest
@@ -12,7 +11,7 @@ from controller_manager_msgs.srv import ListControllers, LoadController
 from gazebo_msgs.srv import SpawnModel
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import clock_recorder, rosout_recorder, wait_for  # noqa: E402
+from rostest_util import WorldTestCase, wait_for  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CM = '/arm1/controller_manager/'
@@ -24,13 +23,14 @@ def run(*cmd, timeout=60):
     return proc.returncode, proc.stdout
 
 
-class BadInput(unittest.TestCase):
+class BadInput(WorldTestCase):
+    NODE = 'test_bad_input'
+    RECORD = ('rosout', 'clock')
+    SERVICES = (CM + 'list_controllers',)
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_bad_input')
-        cls.rosout = rosout_recorder()
-        cls.clock = clock_recorder()
-        rospy.wait_for_service(CM + 'list_controllers', 60)
+        super().setUpClass()
         cls.list = rospy.ServiceProxy(CM + 'list_controllers', ListControllers)
 
     def running(self):

@@ -4,7 +4,6 @@ import math
 import os
 import sys
 import time
-import unittest
 
 import rospy
 import rosservice
@@ -14,23 +13,22 @@ from control_msgs.msg import JointControllerState
 from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import (JOINTS, clock_recorder, joint_recorder, positions,  # noqa: E402
-                          rosout_recorder, sim_wait, wait_for, wait_for_controllers)
+from rostest_util import JOINTS, WorldTestCase, positions, sim_wait, wait_for  # noqa: E402
 
 LIMITS = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
           'joint4': (-0.8, 1.57)}
 
 
-class Basics(unittest.TestCase):
+class Basics(WorldTestCase):
+    NODE = 'test_basics'
+    RECORD = ('states', 'clock', 'rosout')
+    CONTROLLERS = 5
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_basics')
-        cls.states = joint_recorder()
-        cls.clock = clock_recorder()
-        cls.rosout = rosout_recorder()
+        super().setUpClass()
         cls.pub = {j: rospy.Publisher('/arm1/%s_position_controller/command' % j, Float64,
                                       queue_size=1, latch=True) for j in JOINTS}
-        cls.list_controllers = wait_for_controllers(5)
 
     def command(self, joint, value):
         self.pub[joint].publish(value)

@@ -4,9 +4,7 @@ import math
 import os
 import sys
 import time
-import unittest
 
-import rospy
 import rostest
 from sensor_msgs.msg import CameraInfo
 from std_msgs.msg import Float64
@@ -14,19 +12,21 @@ from std_msgs.msg import Float64
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import (LOOK, UP, ImageRecorder, JointCommander, cpu_seconds,  # noqa: E402
                          node_pid, render_processes, uniform)
-from rostest_util import Recorder, joint_recorder, sim_wait, wait_for  # noqa: E402
+from rostest_util import Recorder, WorldTestCase, sim_wait, wait_for  # noqa: E402
 
 RATE = 30.0
 F = 320 / math.tan(0.7)  # focal length in pixels: 640 wide, hfov 1.4
 
 
-class Camera(unittest.TestCase):
+class Camera(WorldTestCase):
+    NODE = 'test_camera'
+    RECORD = ('states',)
+    FIRST = ('states',)
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_camera')
-        cls.states = joint_recorder()
+        super().setUpClass()
         cls.rtf = Recorder('/gazebo/real_time_factor', Float64)
-        assert wait_for(lambda: cls.states.last() is not None, 60), 'no joint_states'
         cls.world = node_pid('/gazebo')
         cls.arm = JointCommander(cls.states)
 

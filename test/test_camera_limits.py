@@ -6,17 +6,15 @@ import os
 import signal
 import sys
 import time
-import unittest
 
 import rosgraph
-import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import (ImageRecorder, camera_box_urdf, clock_rate, delete_model,  # noqa: E402
                          node_pid, render_processes, spawn_urdf)
-from rostest_util import clock_recorder, rosout_recorder, wait_for  # noqa: E402
+from rostest_util import WorldTestCase, wait_for  # noqa: E402
 
 TOPIC = '/eye/image_raw'
 
@@ -28,14 +26,15 @@ def publishers(topic):
     return []
 
 
-class CameraLimits(unittest.TestCase):
+class CameraLimits(WorldTestCase):
+    NODE = 'test_camera_limits'
+    RECORD = ('clock', 'rosout')
+    SERVICES = ('/gazebo/spawn_urdf_model',)
+    FIRST = ('clock',)
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_camera_limits')
-        cls.clock = clock_recorder()
-        cls.rosout = rosout_recorder()
-        rospy.wait_for_service('/gazebo/spawn_urdf_model', 60)
-        assert wait_for(lambda: cls.clock.last() is not None, 30), 'no /clock'
+        super().setUpClass()
         cls.world = node_pid('/gazebo')
 
     def clock_advances(self, seconds, timeout):

@@ -7,14 +7,12 @@ import subprocess
 import sys
 import tempfile
 import time
-import unittest
 
-import rospy
 import rostest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import LOOK, UP, ImageRecorder, JointCommander, uniform  # noqa: E402
-from rostest_util import joint_recorder, rosout_recorder, sim_wait, wait_for  # noqa: E402
+from rostest_util import WorldTestCase, sim_wait, wait_for  # noqa: E402
 
 
 def rosservice_call(*pose):
@@ -23,14 +21,15 @@ def rosservice_call(*pose):
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
 
-class Goal(unittest.TestCase):
+class Goal(WorldTestCase):
+    NODE = 'test_goal'
+    RECORD = ('states', 'rosout')
+    SERVICES = ('/arm_mover/safe_move',)
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_goal')
-        cls.states = joint_recorder()
-        cls.rosout = rosout_recorder()
+        super().setUpClass()
         cls.arm = JointCommander(cls.states)
-        rospy.wait_for_service('/arm_mover/safe_move', 60)
 
     def test_01_the_camera_publishes(self):
         images = ImageRecorder()

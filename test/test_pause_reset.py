@@ -3,7 +3,6 @@
 import os
 import sys
 import time
-import unittest
 
 import rospy
 import rostest
@@ -11,8 +10,7 @@ from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import (JOINTS, clock_recorder, joint_recorder, positions,  # noqa: E402
-                          wait_for, wait_for_controllers)
+from rostest_util import JOINTS, WorldTestCase, positions, wait_for  # noqa: E402
 
 
 def call(name):
@@ -20,15 +18,16 @@ def call(name):
     rospy.ServiceProxy(name, Empty)()
 
 
-class PauseReset(unittest.TestCase):
+class PauseReset(WorldTestCase):
+    NODE = 'test_pause_reset'
+    RECORD = ('clock', 'states')
+    CONTROLLERS = 5
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_pause_reset')
-        cls.clock = clock_recorder()
-        cls.states = joint_recorder()
+        super().setUpClass()
         cls.pub = rospy.Publisher('/arm1/joint1_position_controller/command', Float64,
                                   queue_size=1, latch=True)
-        wait_for_controllers(5)
 
     def joint1_at(self, target, tol=0.03, timeout=30):
         return wait_for(lambda: self.states.last() is not None and

@@ -15,7 +15,6 @@ import sys
 import tempfile
 import threading
 import time
-import unittest
 import uuid
 
 import rospy
@@ -24,7 +23,7 @@ from gazebo_msgs.srv import DeleteModel, SpawnModel
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import node_pid  # noqa: E402
-from rostest_util import clock_recorder, rosout_recorder, wait_for  # noqa: E402
+from rostest_util import WorldTestCase, wait_for  # noqa: E402
 
 MODELS_LIMIT = 40  # test/config/security.world
 MIN_RTF = 0.95
@@ -58,16 +57,17 @@ CAMERA = '''<gazebo reference="body"><sensor type="camera" name="huge_camera">
   </plugin></sensor></gazebo>'''
 
 
-class Security(unittest.TestCase):
+class Security(WorldTestCase):
+    NODE = 'test_security'
+    RECORD = ('clock', 'rosout')
+    SERVICES = ('/gazebo/spawn_urdf_model',)
+    FIRST = ('clock',)
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_security')
-        cls.clock = clock_recorder()
-        cls.rosout = rosout_recorder()
-        rospy.wait_for_service('/gazebo/spawn_urdf_model', 60)
+        super().setUpClass()
         cls.spawn_srv = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
         cls.delete_srv = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)
-        assert wait_for(lambda: cls.clock.last() is not None, 30), 'no /clock'
         cls.world_cwd = os.readlink('/proc/%d/cwd' % node_pid('/gazebo'))
 
     def spawn(self, name, xml):
