@@ -13,15 +13,18 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence,
 
 import pytest
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SRC = os.path.join(REPO_ROOT, 'src')
+# src/ first on the path (pytest may run outside the workspace); the root then comes from arm1.
+SRC = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'src'))
 if SRC not in sys.path:
     sys.path.insert(0, SRC)
 
 from arm1.control.controller_manager import ControllerManager  # noqa: E402  (after SRC)
 from arm1.control.interfaces import Fields, NodeFactory, Params  # noqa: E402
 from arm1.control.switching import switch_while_updating  # noqa: E402
+from arm1.paths import repo_root  # noqa: E402
 from arm1.tuning.local_ros import LocalNodeHandle, LocalRos  # noqa: E402
+
+REPO_ROOT = repo_root()
 
 ARM1_XACRO = os.path.join(REPO_ROOT, 'urdf', 'arm1.urdf.xacro')
 CONTROLLERS_YAML = os.path.join(REPO_ROOT, 'config', 'controllers.yaml')
