@@ -29,7 +29,7 @@ APT_PACKAGES := \
   python3-rospy python3-roslaunch python3-rostest librostest-dev python3-rosunit rosbash \
   catkin rosout ros-robot-state-publisher joint-state-publisher \
   python3-std-msgs python3-sensor-msgs python3-std-srvs python3-geometry-msgs \
-  python3-rosgraph-msgs python3-trajectory-msgs python3-actionlib-msgs \
+  python3-rosgraph-msgs python3-trajectory-msgs python3-actionlib-msgs python3-actionlib \
   ros-std-msgs libstd-msgs-dev ros-geometry-msgs libgeometry-msgs-dev \
   ros-sensor-msgs libsensor-msgs-dev ros-std-srvs libstd-srvs-dev \
   ros-rosgraph-msgs libros-rosgraph-msgs-dev \
