@@ -15,8 +15,8 @@ from typing import Any, Dict, List, Optional, Tuple
 
 from tqdm import tqdm
 
-from ..session.launcher import RosSession
 from ..paths import repo_root
+from ..session.launcher import RosSession
 from .probes import machine
 from .report import write_markdown, write_plot
 

@@ -11,8 +11,8 @@ from ..control.switching import SwitchRequest
 from .arm import CONTROLLERS, NAMES, WORLD, arm1_urdf
 
 if TYPE_CHECKING:
-    from ..sim.pacer import Pacer
     from ..ros.world_node import WorldNode
+    from ..sim.pacer import Pacer
 
 
 def start_standin(arms: int, real_time_update_rate: Optional[float]

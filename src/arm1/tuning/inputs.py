@@ -8,8 +8,8 @@ from typing import Any, Dict, List, Optional
 
 import yaml
 
-from ..ros import xacro_bridge
 from ..paths import repo_root
+from ..ros import xacro_bridge
 from .metrics import Criteria
 from .steps import ARM1_POSES, ARM1_START, Protocol, StepRig
 
