@@ -13,7 +13,7 @@ import os
 import re
 import struct
 import xml.sax
-from typing import BinaryIO, Dict, List, Optional
+from typing import Any, BinaryIO, Dict, List, Optional
 
 from defusedxml import DefusedXmlException
 from defusedxml.expatreader import create_parser
@@ -113,7 +113,7 @@ def _obj_triangles(f: BinaryIO, stop: float) -> int:
         if len(carry) >= CHUNK:  # one line longer than a chunk: stream it
             start = _OBJ_FACE_START.match(carry)
             long_face = start is not None
-            if long_face:
+            if start is not None:
                 total += max(0, len(carry[start.end():].split()) - 2)
             carry = b''
     return total + _face_triangles(carry)
@@ -135,7 +135,7 @@ class _DaeCounter(xml.sax.ContentHandler):
         self.in_p = False
         self.in_token = False
 
-    def startElement(self, name: str, attrs: Dict[str, str]) -> None:
+    def startElement(self, name: str, attrs: Any) -> None:
         tag = name.rpartition(':')[2]
         if tag in self.PRIMITIVES and self.primitive is None:
             self.primitive, self.offsets, self.primitive_tokens = tag, [], 0
@@ -205,7 +205,7 @@ def _dae_triangles(f: BinaryIO, path: str, stop: float) -> int:
         raise MeshError('%s: a COLLADA file with a DTD or entities: refused' % path) from None
     except xml.sax.SAXParseException as exc:
         raise MeshError('%s: not well-formed XML (line %d): %s'
-                        % (path, exc.getLineNumber(), exc.getMessage())) from None
+                        % (path, exc.getLineNumber() or 0, exc.getMessage())) from None
     except MeshError as exc:
         raise MeshError('%s: %s' % (path, exc)) from None
     return counter.triangles

@@ -56,7 +56,7 @@ class ControlPlugin:
     """The gazebo_ros_control ``<plugin>`` of a description."""
     robot_namespace: str = ''
     robot_sim_type: str = 'gazebo_ros_control/DefaultRobotHWSim'
-    control_period: float = None
+    control_period: Optional[float] = None
 
 
 @dataclass
@@ -66,7 +66,7 @@ class RobotModel:
     links: list
     joints: dict  # name -> Joint, in document order
     transmissions: list
-    control_plugin: ControlPlugin = None
+    control_plugin: Optional[ControlPlugin] = None
     gazebo_refs: dict = field(default_factory=dict)  # link -> {tag: text}
     sensors: list = field(default_factory=list)  # (link, <sensor> Element)
 
@@ -157,28 +157,29 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
         parent, child = j.find('parent'), j.find('child')
         if parent is None or child is None:
             raise UrdfError("joint '%s' lacks <parent> or <child>" % name)
-        limits = JointLimits()
+        joint_limits = JointLimits()
         lim = j.find('limit')
         if lim is not None:
             what = "joint '%s' <limit>" % name
-            limits = JointLimits(
+            joint_limits = JointLimits(
                 lower=_float(lim.get('lower', '0'), what) if jtype != 'continuous' else None,
                 upper=_float(lim.get('upper', '0'), what) if jtype != 'continuous' else None,
                 effort=_float(lim.get('effort', '0'), what),
                 velocity=_float(lim.get('velocity', '0'), what))
-        joints[name] = Joint(name, jtype, parent.get('link'), child.get('link'), limits)
+        joints[name] = Joint(name, jtype or '', parent.get('link') or '', child.get('link') or '',
+                             joint_limits)
     children = {j.child for j in joints.values()}
     roots = [l for l in links if l not in children]
     if len(roots) != 1:
         raise UrdfError('robot must have exactly one root link, found %s' % roots)
     transmissions = []
     for t in root.findall('transmission'):
-        j = t.find('joint')
-        if j is None:
+        tj = t.find('joint')
+        if tj is None:
             continue
-        ifaces = [canonical_interface(h.text) for h in j.findall('hardwareInterface')]
-        transmissions.append(Transmission(t.get('name'), j.get('name'), ifaces))
-    model = RobotModel(root.get('name'), roots[0], links, joints, transmissions)
+        ifaces = [canonical_interface(h.text) for h in tj.findall('hardwareInterface')]
+        transmissions.append(Transmission(t.get('name') or '', tj.get('name') or '', ifaces))
+    model = RobotModel(root.get('name') or '', roots[0], links, joints, transmissions)
     for g in root.findall('gazebo'):
         ref = g.get('reference')
         if ref is None:
@@ -218,7 +219,7 @@ def resolve_mesh_uris(xml_text: Union[str, bytes], find_package: Callable[[str],
         for mesh in link.iter('mesh'):
             uri = mesh.get('filename', '')
             if uri not in checked:
-                checked[uri] = _checked_mesh(uri, link.get('name'), find_package, limits)
+                checked[uri] = _checked_mesh(uri, link.get('name') or '', find_package, limits)
             mesh.set('filename', checked[uri])
     return ET.tostring(root, encoding='unicode')
 

@@ -83,7 +83,7 @@ def _serve(conn: Connection) -> None:
         world_config, robots = conn.recv()
         world = World(world_config, gui=False)
         mirror: Dict[str, Any] = {}  # name -> Robot, or the text of why it could not be loaded
-        broken = {}
+        broken: Dict[str, str] = {}
 
         def load(name: str, args: tuple) -> None:
             try:
@@ -195,7 +195,7 @@ class RenderProcess:
 
     def _receive_pixels(self, nbytes: int) -> memoryview:
         # np.empty: no zeroing; recv_into fills it without the GIL
-        view = memoryview(np.empty(nbytes, np.uint8))
+        view = memoryview(np.empty(nbytes, np.uint8))  # type: ignore[arg-type]
         got = 0
         while got < nbytes:
             n = self._raw.recv_into(view[got:])
@@ -225,7 +225,7 @@ class RenderProcess:
                 return self._replies.popleft()
             if self._gone:
                 raise RenderError(self._gone)
-        raise RenderError('no frame from render process %d in %g s' % (self.pid, timeout))
+        raise RenderError('no frame from render process %d in %s s' % (self.pid, timeout))
 
     def close(self, kill: bool = False) -> None:
         """End the process: by closing its connection (it sees EOF), or at once with ``kill``."""

@@ -242,7 +242,7 @@ class SensorManager:
             return
         self._start()
         snapshot = None
-        owed.sort(key=lambda c: c.owed_since)  # the longest waiting first
+        owed.sort(key=lambda c: c.owed_since or 0)  # the longest waiting first
         for cam in owed:
             if cam.in_flight >= len(self.renderers):
                 continue
@@ -409,7 +409,7 @@ class SensorManager:
         while cam.out and cam.out[0].reply is not None:
             frame = cam.out.pop(0)
             cam.in_flight -= 1
-            kind, payload = frame.reply
+            kind, payload = frame.reply  # type: ignore[misc]  # not None: checked above
             if cam.removed:
                 continue
             if kind == 'frame':

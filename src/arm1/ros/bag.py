@@ -5,6 +5,8 @@ Record one with e.g.::
 
     rosbag record -O run.bag /arm1/joint_states -e '/arm1/.*_position_controller/command'
 """
+from typing import Any, Dict, List, Tuple
+
 import rosbag
 
 
@@ -14,7 +16,7 @@ def read_run(path, namespace, controllers):
     ns = '/' + namespace.strip('/')
     command_topics = {'%s/%s/command' % (ns, c): j for c, j in controllers.items()}
     states_topic = '%s/joint_states' % ns
-    out = {j: ([], []) for j in controllers.values()}
+    out: Dict[str, Tuple[List[Any], List[Any]]] = {j: ([], []) for j in controllers.values()}
     with rosbag.Bag(path) as bag:
         for topic, msg, t in bag.read_messages(topics=list(command_topics) + [states_topic]):
             if topic == states_topic:

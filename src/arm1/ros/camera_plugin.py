@@ -43,7 +43,7 @@ class ChunkedImage(Image):
     """
 
     def serialize(self, buff: Any) -> None:
-        data = self.data
+        data: Any = getattr(self, 'data')
         self.data = b''
         try:
             super().serialize(buff)  # everything up to a data length of 0

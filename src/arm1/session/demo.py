@@ -10,6 +10,7 @@ import math
 import sys
 import threading
 import time
+from typing import Dict
 
 JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
 
@@ -20,8 +21,8 @@ class Monitor:
         from sensor_msgs.msg import JointState
         from std_msgs.msg import Float64
         self.lock = threading.Lock()
-        self.position = {}
-        self.command = {}
+        self.position: Dict[str, float] = {}
+        self.command: Dict[str, float] = {}
         self.rtf = float('nan')
         self.stamp = 0.0
         self.samples = []  # (sim time, {joint: (command, position)})

@@ -43,7 +43,9 @@ def node_pid(name: str, master_uri: Optional[str] = None, caller: str = '/arm1_l
     import xmlrpc.client
     import rosgraph
     master = rosgraph.Master(caller, master_uri=master_uri)
-    code, msg, pid = xmlrpc.client.ServerProxy(master.lookupNode(name)).getPid(caller)
+    reply: Tuple[int, str, int] = xmlrpc.client.ServerProxy(  # type: ignore[assignment]
+        master.lookupNode(name)).getPid(caller)
+    code, msg, pid = reply
     if code != 1:
         raise RuntimeError('getPid of %s failed: %s' % (name, msg))
     return pid

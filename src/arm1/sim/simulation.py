@@ -10,7 +10,7 @@ import math
 import os
 import tempfile
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Optional, Protocol, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from ..control.controller_manager import ControllerManager
 from ..control.loop import ControlLoop, control_period_ns
@@ -228,19 +228,19 @@ class Simulation:
         if self.sensors.cameras:
             self.sensors.update(self.time_ns, self._robot_states)
 
-    def _robot_states(self):
+    def _robot_states(self) -> Dict[str, Any]:
         return {name: model.robot.state() for name, model in self.models.items()}
 
-    def reset_world(self):
+    def reset_world(self) -> None:
         """Robots back to their spawn poses, joints to zero; time goes on."""
         self.world.reset()
 
-    def reset_simulation(self):
+    def reset_simulation(self) -> None:
         """As reset_world, and time back to zero."""
         self.world.reset()
         self.steps = 0
 
-    def close(self):
+    def close(self) -> None:
         self.sensors.close()
         self.world.close()
         self._tmp.cleanup()

@@ -232,7 +232,7 @@ class StepRig:
                 k += 1
                 if phase != 'settle' and m >= n - n_final:
                     now = [h.position for h in others]
-                    if tail_lo is None:
+                    if tail_lo is None or tail_hi is None:
                         tail_lo, tail_hi = list(now), list(now)
                     else:
                         tail_lo = [min(a, b) for a, b in zip(tail_lo, now)]
@@ -249,7 +249,7 @@ class StepRig:
                         abort(k * dt, handle.position, out):
                     aborted = True
                     break
-            if tail_lo is not None:
+            if tail_lo is not None and tail_hi is not None:
                 others_jitter = max([others_jitter] + [h - l for h, l in zip(tail_hi, tail_lo)])
             if aborted:
                 break
