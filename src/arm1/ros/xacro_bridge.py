@@ -5,43 +5,21 @@ ROS 1 (catkin / Debian) system does not have.  This module replaces xacro's
 find function with one that asks rospkg (``ROS_PACKAGE_PATH``), so
 ``xacro '$(find arm1)/urdf/arm1.urdf.xacro'`` works as it did on ROS 1.
 
-Usable without ROS: when rospkg is missing or does not know the package,
-``arm1`` itself still resolves to this source tree.
+When rospkg does not know the package, ``arm1`` itself still resolves to this source tree.
 """
 
-import os
 import sys
 
-from ..paths import repo_root
-
-_rospack = None
+from . import packages
 
 
-def _not_found(pkg):
+def find_package(pkg: str) -> str:
+    """The directory of ROS package ``pkg``, as xacro's ``$(find pkg)`` wants it."""
     try:
+        return packages.find_package(pkg)
+    except LookupError:
         from xacro.substitution_args import SubstitutionException
-    except ImportError:  # pragma: no cover - xacro missing entirely
-        SubstitutionException = LookupError
-    return SubstitutionException("package '%s' not found on ROS_PACKAGE_PATH" % pkg)
-
-
-def find_package(pkg):
-    """Return the directory of ROS package ``pkg`` (what ``rospack find`` prints)."""
-    global _rospack
-    try:
-        import rospkg
-    except ImportError:
-        rospkg = None
-    if rospkg is not None:
-        try:
-            if _rospack is None:
-                _rospack = rospkg.RosPack()
-            return _rospack.get_path(pkg)
-        except rospkg.ResourceNotFound:
-            pass
-    if pkg == 'arm1' and os.path.isfile(os.path.join(repo_root(), 'package.xml')):
-        return repo_root()
-    raise _not_found(pkg)
+        raise SubstitutionException("package '%s' not found on ROS_PACKAGE_PATH" % pkg) from None
 
 
 def install():

@@ -8,27 +8,15 @@ from typing import Any, Dict, List, Optional
 
 import yaml
 
-from ..paths import repo_root
 from ..ros import xacro_bridge
+from ..ros.packages import find_package
 from .metrics import Criteria
 from .steps import ARM1_POSES, ARM1_START, Protocol, StepRig
 
 
 def arm1_file(rel: str) -> str:
     """A file of the arm1 package: where ROS finds it, else in this source tree."""
-    try:
-        base = xacro_bridge.find_package('arm1')
-    except Exception:
-        base = repo_root()
-    return os.path.join(base, rel)
-
-
-def find_package(name: str) -> str:
-    """A package's directory (for package:// mesh URIs); LookupError if there is none."""
-    try:
-        return xacro_bridge.find_package(name)
-    except Exception:
-        raise LookupError(name) from None
+    return os.path.join(find_package('arm1'), rel)
 
 
 def parse_pose(items: List[str]) -> Dict[str, float]:
