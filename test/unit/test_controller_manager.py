@@ -49,7 +49,7 @@ def states(cm):
 # ----------------------------------------------------------------------------- load
 def test_controller_types():
     cm = ControllerManager(None, FakeRos().node_handle, '/x')
-    assert cm.controller_types() == [JPC, JSC]
+    assert cm.controller_types() == [JPC, 'effort_controllers/JointTrajectoryController', JSC]
 
 
 def test_load_lists_name_type_state_and_claimed_resources(rig):

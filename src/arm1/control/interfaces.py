@@ -23,6 +23,29 @@ class Publisher(Protocol):
     def publish(self, fields: Fields) -> None: ...
 
 
+class GoalHandle(Protocol):
+    """One goal of an action server (actionlib's ServerGoalHandle). ``goal`` is the goal
+    as plain fields; ``id`` is the same for every handle of one goal. The outcome calls
+    take the result's fields (e.g. ``error_code``, ``error_string``)."""
+
+    id: str
+    goal: Fields
+
+    def accept(self) -> None: ...
+
+    def reject(self, result: Fields) -> None: ...
+
+    def succeed(self, result: Fields) -> None: ...
+
+    def abort(self, result: Fields) -> None: ...
+
+    def cancel(self, result: Fields) -> None:
+        """setCanceled: PREEMPTED for an accepted goal."""
+        ...
+
+    def publish_feedback(self, fields: Fields) -> None: ...
+
+
 class NodeHandle(Protocol):
     """ros::NodeHandle as controllers use it."""
 
@@ -33,6 +56,18 @@ class NodeHandle(Protocol):
 
     def subscribe(self, topic: str, type_name: str, callback: Callable[[Any], object]) -> object:
         """``callback`` gets the message's ``data`` (e.g. a float for std_msgs/Float64)."""
+        ...
+
+    def action_server(self, name: str, type_name: str, on_goal: Callable[[GoalHandle], None],
+                      on_cancel: Callable[[GoalHandle], None]) -> object:
+        """An action server at ``name`` (e.g. 'control_msgs/FollowJointTrajectory'); the
+        callbacks may run on any thread and decide a goal's fate through its handle."""
+        ...
+
+    def serve(self, name: str, type_name: str,
+              handler: Callable[[Fields], Fields]) -> object:
+        """A service: ``handler(request fields)`` returns the response's fields or raises
+        ValueError (the call fails with its message)."""
         ...
 
     def shutdown(self) -> None:

@@ -11,10 +11,12 @@ from typing import Dict, Tuple, Type
 from .controller import Controller
 from .joint_position_controller import JointPositionController
 from .joint_state_controller import JointStateController
+from .joint_trajectory_controller import JointTrajectoryController
 
 CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = (
     JointPositionController,
     JointStateController,
+    JointTrajectoryController,
 )
 
 

@@ -11,9 +11,10 @@ import warnings
 from typing import Any, Callable, Dict, List, Tuple
 
 import rospy
-from control_msgs.msg import JointControllerState
+from control_msgs.msg import JointControllerState, JointTrajectoryControllerState
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from ..control.interfaces import Fields, Params
 
@@ -50,12 +51,183 @@ def _fill_data(msg: Any, value: Any) -> None:
     msg.data = value
 
 
+def _fill_point(point: Any, fields: Fields) -> None:
+    """A trajectory_msgs/JointTrajectoryPoint from plain fields (time_from_start: ns)."""
+    for key, value in fields.items():
+        if key == 'time_from_start':
+            point.time_from_start = rospy.Duration.from_sec(value) if isinstance(value, float) \
+                else rospy.Duration(0, int(value))
+        else:
+            setattr(point, key, value)
+
+
+def _fill_trajectory_state(msg: Any, fields: Fields) -> None:
+    """control_msgs/JointTrajectoryControllerState (also the action's feedback)."""
+    for key, value in fields.items():
+        if key == 'stamp':
+            msg.header.stamp = to_time(value)
+        elif key in ('desired', 'actual', 'error'):
+            point = JointTrajectoryPoint()
+            _fill_point(point, value)
+            setattr(msg, key, point)
+        else:
+            setattr(msg, key, value)
+
+
+def _read_data(msg: Any) -> Any:
+    return msg.data
+
+
+def duration_ns(d: Any) -> int:
+    return int(d.secs) * 1000000000 + int(d.nsecs)
+
+
+def read_trajectory(msg: Any) -> Dict[str, Any]:
+    """trajectory_msgs/JointTrajectory as the core's plain fields (times in ns)."""
+    return dict(stamp=duration_ns(msg.header.stamp), joint_names=list(msg.joint_names),
+                points=[dict(positions=list(p.positions), velocities=list(p.velocities),
+                             accelerations=list(p.accelerations), effort=list(p.effort),
+                             time_from_start=duration_ns(p.time_from_start))
+                        for p in msg.points])
+
+
+def read_follow_joint_trajectory_goal(goal: Any) -> Dict[str, Any]:
+    def tolerances(entries: Any) -> List[Dict[str, Any]]:
+        return [dict(name=t.name, position=t.position, velocity=t.velocity,
+                     acceleration=t.acceleration) for t in entries]
+    return dict(trajectory=read_trajectory(goal.trajectory),
+                path_tolerance=tolerances(goal.path_tolerance),
+                goal_tolerance=tolerances(goal.goal_tolerance),
+                goal_time_tolerance=duration_ns(goal.goal_time_tolerance))
+
+
 # type name -> (message class, fill(message, core's fields))
 MESSAGES: Dict[str, Tuple[type, Fill]] = {
     'sensor_msgs/JointState': (JointState, _fill_stamped),
     'control_msgs/JointControllerState': (JointControllerState, _fill_stamped),
     'std_msgs/Float64': (Float64, _fill_data),
+    'control_msgs/JointTrajectoryControllerState': (JointTrajectoryControllerState,
+                                                    _fill_trajectory_state),
+    'trajectory_msgs/JointTrajectory': (JointTrajectory, _fill_stamped),
 }
+# type name -> what a subscriber's callback gets from a message (default: its ``data``)
+READERS: Dict[str, Callable[[Any], Any]] = {
+    'trajectory_msgs/JointTrajectory': read_trajectory,
+}
+
+
+class RosGoalHandle:
+    """control/interfaces.py's GoalHandle over actionlib's ServerGoalHandle."""
+
+    def __init__(self, gh: Any, goal: Dict[str, Any], result_class: type,
+                 feedback_class: type, fill_feedback: Fill) -> None:
+        self._gh, self.goal = gh, goal
+        self.id = gh.get_goal_id().id
+        self._result_class, self._feedback_class = result_class, feedback_class
+        self._fill_feedback = fill_feedback
+
+    def _result(self, fields: Fields) -> Any:
+        result = self._result_class()
+        for key, value in fields.items():
+            setattr(result, key, value)
+        return result
+
+    def accept(self) -> None:
+        self._gh.set_accepted()
+
+    def reject(self, result: Fields) -> None:
+        self._gh.set_rejected(self._result(result), result.get('error_string', ''))
+
+    def succeed(self, result: Fields) -> None:
+        self._gh.set_succeeded(self._result(result), result.get('error_string', ''))
+
+    def abort(self, result: Fields) -> None:
+        self._gh.set_aborted(self._result(result), result.get('error_string', ''))
+
+    def cancel(self, result: Fields) -> None:
+        self._gh.set_canceled(self._result(result), result.get('error_string', ''))
+
+    def publish_feedback(self, fields: Fields) -> None:
+        feedback = self._feedback_class()
+        self._fill_feedback(feedback, fields)
+        self._gh.publish_feedback(feedback)
+
+
+class _ActionServer:
+    """actionlib's ActionServer, withdrawn by unregister(). Its status timer is made anew
+    with reset=True: rospy's Timer otherwise dies when sim time jumps back (reset_simulation)."""
+
+    def __init__(self, name: str, type_name: str, on_goal: Callable[[Any], None],
+                 on_cancel: Callable[[Any], None]) -> None:
+        import actionlib
+        spec, goal_reader, result_class, feedback_class, fill_feedback = ACTIONS[type_name]
+
+        def wrap(gh: Any) -> RosGoalHandle:
+            return RosGoalHandle(gh, goal_reader(gh.get_goal()), result_class, feedback_class,
+                                 fill_feedback)
+
+        self.server = actionlib.ActionServer(name, spec, lambda gh: on_goal(wrap(gh)),
+                                             lambda gh: on_cancel(wrap(gh)), auto_start=False)
+        self.server.start()
+        timer = getattr(self.server, 'status_timer', None)
+        if timer is not None:
+            period = timer._period
+            timer.shutdown()
+            self.server.status_timer = rospy.Timer(period, self.server.publish_status_async,
+                                                   reset=True)
+
+    def unregister(self) -> None:
+        s = self.server
+        timer = getattr(s, 'status_timer', None)
+        if timer is not None:
+            timer.shutdown()
+        for name in ('status_pub', 'result_pub', 'feedback_pub', 'goal_sub', 'cancel_sub'):
+            handle = getattr(s, name, None)
+            if handle is not None:
+                handle.unregister()
+
+
+def _actions() -> Dict[str, Tuple[Any, Callable[[Any], Any], type, type, Fill]]:
+    from control_msgs.msg import (
+        FollowJointTrajectoryAction,
+        FollowJointTrajectoryFeedback,
+        FollowJointTrajectoryResult,
+    )
+    return {'control_msgs/FollowJointTrajectory': (
+        FollowJointTrajectoryAction, read_follow_joint_trajectory_goal,
+        FollowJointTrajectoryResult, FollowJointTrajectoryFeedback, _fill_trajectory_state)}
+
+
+ACTIONS = _actions()
+
+
+class _Service:
+    def __init__(self, name: str, type_name: str, handler: Callable[[Fields], Fields]) -> None:
+        srv_class, read_request = SERVICES[type_name]
+
+        def call(req: Any) -> Any:
+            try:
+                fields = handler(read_request(req))
+            except ValueError as exc:
+                raise rospy.ServiceException(str(exc))
+            response = srv_class._response_class()
+            for key, value in fields.items():
+                setattr(response, key, value)
+            return response
+
+        self.service = rospy.Service(name, srv_class, call)
+
+    def unregister(self) -> None:
+        self.service.shutdown()
+
+
+def _services() -> Dict[str, Tuple[Any, Callable[[Any], Fields]]]:
+    from control_msgs.srv import QueryTrajectoryState
+    return {'control_msgs/QueryTrajectoryState': (
+        QueryTrajectoryState, lambda req: dict(time=duration_ns(req.time)))}
+
+
+SERVICES = _services()
 
 
 class _Publisher:
@@ -92,7 +264,8 @@ class RosNodeHandle:
     def subscribe(self, topic: str, type_name: str,
                   callback: Callable[[Any], object]) -> rospy.Subscriber:
         cls, _ = MESSAGES[type_name]
-        sub = rospy.Subscriber(self._name(topic), cls, lambda m: callback(m.data), queue_size=1)
+        read = READERS.get(type_name, _read_data)
+        sub = rospy.Subscriber(self._name(topic), cls, lambda m: callback(read(m)), queue_size=1)
         self._handles.append(sub)
         return sub
 
@@ -105,6 +278,17 @@ class RosNodeHandle:
         if server is not None:
             self._handles.append(server)
         return server
+
+    def action_server(self, name: str, type_name: str, on_goal: Callable[[Any], None],
+                      on_cancel: Callable[[Any], None]) -> _ActionServer:
+        server = _ActionServer(self._name(name), type_name, on_goal, on_cancel)
+        self._handles.append(server)
+        return server
+
+    def serve(self, name: str, type_name: str, handler: Callable[[Fields], Fields]) -> _Service:
+        service = _Service(self._name(name), type_name, handler)
+        self._handles.append(service)
+        return service
 
     def shutdown(self) -> None:
         for h in self._handles:

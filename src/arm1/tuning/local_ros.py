@@ -11,9 +11,67 @@ from __future__ import annotations
 
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from ..control.interfaces import Fields, Params, Publisher
+from ..control.interfaces import Fields, GoalHandle, Params, Publisher
 
 Callback = Callable[[Any], object]
+GoalCallback = Callable[[GoalHandle], None]
+
+
+class LocalGoalHandle:
+    """One goal of a LocalActionServer: its status (actionlib's names) and result."""
+
+    def __init__(self, server: LocalActionServer, goal_id: str, goal: Fields) -> None:
+        self.server, self.id, self.goal = server, goal_id, goal
+        self.status = 'PENDING'
+        self.result: Optional[Fields] = None
+        self.feedback: List[Fields] = []
+
+    def _end(self, allowed: Tuple[str, ...], status: str, result: Fields) -> None:
+        if self.status not in allowed:
+            raise RuntimeError('goal %s: %s from %s' % (self.id, status, self.status))
+        self.status, self.result = status, result
+
+    def accept(self) -> None:
+        self._end(('PENDING', 'RECALLING'), 'ACTIVE' if self.status == 'PENDING'
+                  else 'PREEMPTING', {})
+        self.result = None
+
+    def reject(self, result: Fields) -> None:
+        self._end(('PENDING', 'RECALLING'), 'REJECTED', result)
+
+    def succeed(self, result: Fields) -> None:
+        self._end(('ACTIVE', 'PREEMPTING'), 'SUCCEEDED', result)
+
+    def abort(self, result: Fields) -> None:
+        self._end(('ACTIVE', 'PREEMPTING'), 'ABORTED', result)
+
+    def cancel(self, result: Fields) -> None:
+        self._end(('PENDING', 'RECALLING', 'ACTIVE', 'PREEMPTING'),
+                  'RECALLED' if self.status in ('PENDING', 'RECALLING') else 'PREEMPTED', result)
+
+    def publish_feedback(self, fields: Fields) -> None:
+        self.feedback.append(fields)
+
+
+class LocalActionServer:
+    """actionlib's ActionServer in-process: ``send_goal`` and ``cancel`` play the client."""
+
+    def __init__(self, name: str, type_name: str, on_goal: GoalCallback,
+                 on_cancel: GoalCallback) -> None:
+        self.name, self.type_name = name, type_name
+        self.on_goal, self.on_cancel = on_goal, on_cancel
+        self.goals: List[LocalGoalHandle] = []
+
+    def send_goal(self, goal: Fields) -> LocalGoalHandle:
+        gh = LocalGoalHandle(self, 'goal-%d' % (len(self.goals) + 1), goal)
+        self.goals.append(gh)
+        self.on_goal(gh)
+        return gh
+
+    def cancel(self, gh: LocalGoalHandle) -> None:
+        if gh.status in ('PENDING', 'ACTIVE'):
+            gh.status = 'RECALLING' if gh.status == 'PENDING' else 'PREEMPTING'
+            self.on_cancel(gh)
 
 
 class LocalPublisher:
@@ -35,6 +93,7 @@ class LocalNodeHandle:
         self.namespace = namespace.rstrip('/') or '/'
         self.params = ros.get_param(self.namespace)
         self._subscriptions: List[Tuple[str, Callback]] = []
+        self._servers: List[str] = []  # names of its action servers and services
 
     def resolve(self, topic: str) -> str:
         return topic if topic.startswith('/') else '%s/%s' % (self.namespace.rstrip('/'), topic)
@@ -48,10 +107,27 @@ class LocalNodeHandle:
         self._subscriptions.append((name, callback))
         return callback
 
+    def action_server(self, name: str, type_name: str, on_goal: GoalCallback,
+                      on_cancel: GoalCallback) -> LocalActionServer:
+        server = LocalActionServer(self.resolve(name), type_name, on_goal, on_cancel)
+        self.ros.action_servers[server.name] = server
+        self._servers.append(server.name)
+        return server
+
+    def serve(self, name: str, type_name: str,
+              handler: Callable[[Fields], Fields]) -> Callable[[Fields], Fields]:
+        self.ros.services[self.resolve(name)] = handler
+        self._servers.append(self.resolve(name))
+        return handler
+
     def shutdown(self) -> None:
         for name, callback in self._subscriptions:
             self.ros.subscribers[name].remove(callback)
         self._subscriptions = []
+        for name in self._servers:
+            self.ros.action_servers.pop(name, None)
+            self.ros.services.pop(name, None)
+        self._servers = []
 
 
 class LocalRos:
@@ -60,6 +136,8 @@ class LocalRos:
         self.subscribers: Dict[str, List[Callback]] = {}
         self.last: Dict[str, Fields] = {}  # topic -> last published fields
         self.recorded: Dict[str, List[Fields]] = {}  # for the topics passed to record()
+        self.action_servers: Dict[str, LocalActionServer] = {}
+        self.services: Dict[str, Callable[[Fields], Fields]] = {}
 
     def get_param(self, namespace: str) -> Params:
         node: Any = self.params
