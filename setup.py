@@ -1,9 +1,10 @@
 # Used by catkin_python_setup() in CMakeLists.txt; do not run directly.
+from catkin_pkg.python_setup import generate_distutils_setup
 from setuptools import find_packages, setup
 
-from catkin_pkg.python_setup import generate_distutils_setup
-
-setup(**generate_distutils_setup(
-    packages=find_packages('src'),
-    package_dir={'': 'src'},
-))
+setup(
+    **generate_distutils_setup(
+        packages=find_packages('src'),
+        package_dir={'': 'src'},
+    )
+)

@@ -1,4 +1,5 @@
 """Helpers of the camera, arm_mover and look_away rostests: images, poses and the render process."""
+
 import os
 import threading
 import time
@@ -8,11 +9,11 @@ import rosgraph
 import rospy
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
+from rostest_util import JOINTS, positions, wait_for
 from sensor_msgs.msg import Image
 from std_msgs.msg import Float64
 
 from arm1.goal.image import is_uniform
-from rostest_util import JOINTS, positions, wait_for
 
 UP = (0.0, 1.57, 0.0, 0.0)  # arm upright: the camera at its tip sees only the sky
 LOOK = (0.0, 0.6, -0.4, -0.4)  # look_away's default pose: the horizon
@@ -30,15 +31,30 @@ class ImageRecorder:
 
     def _cb(self, msg):
         with self.lock:
-            self.meta.append((msg.header.stamp.to_sec(), msg.width, msg.height, msg.encoding,
-                              msg.step, len(msg.data), msg.header.frame_id))
+            self.meta.append(
+                (
+                    msg.header.stamp.to_sec(),
+                    msg.width,
+                    msg.height,
+                    msg.encoding,
+                    msg.step,
+                    len(msg.data),
+                    msg.header.frame_id,
+                )
+            )
             self.arrived.append(time.monotonic())
             self.latest = msg
 
     def frame_after(self, stamp, timeout=20):
         """The first frame stamped after ``stamp`` (sim seconds), or None."""
-        return wait_for(lambda: self.latest if self.latest is not None
-                        and self.latest.header.stamp.to_sec() > stamp else None, timeout)
+        return wait_for(
+            lambda: (
+                self.latest
+                if self.latest is not None and self.latest.header.stamp.to_sec() > stamp
+                else None
+            ),
+            timeout,
+        )
 
     def close(self):
         self.sub.unregister()
@@ -53,8 +69,12 @@ class JointCommander:
 
     def __init__(self, states, ns='/arm1'):
         self.states = states  # a rostest_util joint_recorder
-        self.pubs = [rospy.Publisher('%s/%s_position_controller/command' % (ns, j), Float64,
-                                     queue_size=1, latch=True) for j in JOINTS]
+        self.pubs = [
+            rospy.Publisher(
+                '%s/%s_position_controller/command' % (ns, j), Float64, queue_size=1, latch=True
+            )
+            for j in JOINTS
+        ]
 
     def go(self, pose, tol=0.05, timeout=30):
         for pub, value in zip(self.pubs, pose):
@@ -63,6 +83,7 @@ class JointCommander:
 
     def wait_at(self, pose, tol=0.05, timeout=30):
         """The stamp (s) of the first joint state within ``tol`` of ``pose``, or None."""
+
         def there():
             msg = self.states.last()
             if msg is None:
@@ -70,6 +91,7 @@ class JointCommander:
             pos = positions(msg)
             ok = all(abs(pos[j] - v) <= tol for j, v in zip(JOINTS, pose))
             return msg.header.stamp.to_sec() if ok else None
+
         return wait_for(there, timeout)
 
 
@@ -105,14 +127,16 @@ def cpu_seconds(pid):
 
 def camera_box_urdf(width, height, rate, camera_name='eye'):
     """A one-link model (no joints) carrying a gazebo_ros_camera that looks down at the ground."""
-    return ('<robot name="box"><link name="body"><inertial><mass value="0.5"/><inertia ixx="1e-3" '
-            'ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial><visual><geometry><box '
-            'size="0.1 0.1 0.1"/></geometry></visual><collision><geometry><box size="0.1 0.1 0.1"/>'
-            '</geometry></collision></link><gazebo reference="body"><sensor type="camera" '
-            'name="%s"><update_rate>%g</update_rate><pose>0 0 0.5 0 1.2 0</pose><camera><image>'
-            '<width>%d</width><height>%d</height></image></camera><plugin name="cam" '
-            'filename="libgazebo_ros_camera.so"><cameraName>%s</cameraName></plugin></sensor>'
-            '</gazebo></robot>' % (camera_name, rate, width, height, camera_name))
+    return (
+        '<robot name="box"><link name="body"><inertial><mass value="0.5"/><inertia ixx="1e-3" '
+        'ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial><visual><geometry><box '
+        'size="0.1 0.1 0.1"/></geometry></visual><collision><geometry><box size="0.1 0.1 0.1"/>'
+        '</geometry></collision></link><gazebo reference="body"><sensor type="camera" '
+        'name="%s"><update_rate>%g</update_rate><pose>0 0 0.5 0 1.2 0</pose><camera><image>'
+        '<width>%d</width><height>%d</height></image></camera><plugin name="cam" '
+        'filename="libgazebo_ros_camera.so"><cameraName>%s</cameraName></plugin></sensor>'
+        '</gazebo></robot>' % (camera_name, rate, width, height, camera_name)
+    )
 
 
 def spawn_urdf(name, xml, z=0.05):

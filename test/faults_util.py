@@ -1,4 +1,5 @@
 """Helpers of the fault rostests: the world's process, its pace, small models and log checks."""
+
 import math
 import socket
 import struct
@@ -8,13 +9,13 @@ from typing import Dict, Optional, Tuple
 import psutil
 import rosgraph
 import rospy
-from gazebo_msgs.srv import DeleteModel, SpawnModel
-
 from camera_util import node_pid
+from gazebo_msgs.srv import DeleteModel, SpawnModel
 from rostest_util import Recorder, wait_for
 
 LINK = '''<link name="{name}">
-    <inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+    <inertial><mass value="0.1"/>
+      <inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
     <visual><geometry><box size="0.05 0.05 0.05"/></geometry></visual>
     <collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision>
   </link>'''
@@ -24,12 +25,17 @@ def urdf(name: str, links: int = 1, joint_type: str = 'revolute') -> str:
     """A chain of ``links`` boxes joined by ``joint_type`` joints (no plugin, no camera)."""
     parts = [LINK.format(name='l0')]
     for i in range(1, links):
-        limit = '<limit lower="-1" upper="1" effort="1" velocity="1"/>' \
-            if joint_type in ('revolute', 'prismatic') else ''
+        limit = (
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
+            if joint_type in ('revolute', 'prismatic')
+            else ''
+        )
         parts.append(LINK.format(name='l%d' % i))
-        parts.append('<joint name="j%d" type="%s"><parent link="l%d"/><child link="l%d"/>'
-                     '<origin xyz="0 0 0.06"/><axis xyz="0 0 1"/>%s</joint>'
-                     % (i, joint_type, i - 1, i, limit))
+        parts.append(
+            '<joint name="j%d" type="%s"><parent link="l%d"/><child link="l%d"/>'
+            '<origin xyz="0 0 0.06"/><axis xyz="0 0 1"/>%s</joint>'
+            % (i, joint_type, i - 1, i, limit)
+        )
     return '<robot name="%s">%s</robot>' % (name, ''.join(parts))
 
 
@@ -94,24 +100,28 @@ class ClockPace:
 
 def logged(rosout: Recorder, since: float, *words: str, timeout: float = 10) -> Optional[str]:
     """The first /rosout message since ``since`` (wall) that contains every word, or None."""
+
     def find():
         return next((m.msg for m in rosout.since(since) if all(w in m.msg for w in words)), None)
+
     return wait_for(find, timeout)
 
 
 def finite_arm(states: Recorder) -> bool:
     """The newest joint_states has only finite positions and velocities."""
     msg = states.last()
-    return msg is not None and all(math.isfinite(v)
-                                   for v in list(msg.position) + list(msg.velocity))
+    return msg is not None and all(
+        math.isfinite(v) for v in list(msg.position) + list(msg.velocity)
+    )
 
 
-def raw_service_call(service: str, header: Dict[str, str], body: bytes,
-                     timeout: float = 10.0) -> bytes:
+def raw_service_call(
+    service: str, header: Dict[str, str], body: bytes, timeout: float = 10.0
+) -> bytes:
     """Talk TCPROS to a service by hand: send ``header`` and ``body`` as they are, return what
     comes back before the server closes (or ``timeout``)."""
     uri = rosgraph.Master('/faults_raw').lookupService(service)
-    host, port = uri[len('rosrpc://'):].rsplit(':', 1)
+    host, port = uri[len('rosrpc://') :].rsplit(':', 1)
     encoded = [('%s=%s' % kv).encode() for kv in header.items()]
     fields = b''.join(struct.pack('<I', len(e)) + e for e in encoded)
     data = struct.pack('<I', len(fields)) + fields + body

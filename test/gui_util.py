@@ -1,4 +1,5 @@
 """Helpers of the GUI rostests: an Xvfb display, a launch on it, and its screen as pixels."""
+
 import os
 import shutil
 import signal
@@ -22,9 +23,12 @@ def read_xwd(path):
     header_size, width, height, byte_order = h[0], h[4], h[5], h[7]
     bits_per_pixel, bytes_per_line, masks, ncolors = h[11], h[12], h[14:17], h[19]
     assert bits_per_pixel == 32, 'a %d-bit screen' % bits_per_pixel
-    px = np.frombuffer(data, '<u4' if byte_order == 0 else '>u4',
-                       count=height * bytes_per_line // 4,
-                       offset=header_size + 12 * ncolors).reshape(height, -1)[:, :width]
+    px = np.frombuffer(
+        data,
+        '<u4' if byte_order == 0 else '>u4',
+        count=height * bytes_per_line // 4,
+        offset=header_size + 12 * ncolors,
+    ).reshape(height, -1)[:, :width]
     shift = lambda m: (m & -m).bit_length() - 1  # noqa: E731
     return np.stack([(px & m) >> shift(m) for m in masks], axis=-1).astype(np.uint8)
 
@@ -46,9 +50,22 @@ class Display:
         self.dir = tempfile.mkdtemp(prefix='arm1-xvfb-')
         read_end, write_end = os.pipe()
         self.xvfb = subprocess.Popen(
-            ['Xvfb', '-displayfd', str(write_end), '-screen', '0', '%dx%dx24' % SCREEN,
-             '-fbdir', self.dir, '-nolisten', 'tcp'], pass_fds=[write_end],
-            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            [
+                'Xvfb',
+                '-displayfd',
+                str(write_end),
+                '-screen',
+                '0',
+                '%dx%dx24' % SCREEN,
+                '-fbdir',
+                self.dir,
+                '-nolisten',
+                'tcp',
+            ],
+            pass_fds=[write_end],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
         os.close(write_end)
         with os.fdopen(read_end) as f:
             self.name = ':' + f.readline().strip()  # chosen by Xvfb
@@ -56,10 +73,15 @@ class Display:
 
     def roslaunch(self, *args):
         """roslaunch on this display, against the test's master."""
-        self.launches.append(subprocess.Popen(
-            ['roslaunch'] + list(args), start_new_session=True,
-            env=dict(os.environ, DISPLAY=self.name), stdout=subprocess.DEVNULL,
-            stderr=subprocess.STDOUT))
+        self.launches.append(
+            subprocess.Popen(
+                ['roslaunch'] + list(args),
+                start_new_session=True,
+                env=dict(os.environ, DISPLAY=self.name),
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.STDOUT,
+            )
+        )
 
     def screen(self):
         return read_xwd(os.path.join(self.dir, 'Xvfb_screen0'))

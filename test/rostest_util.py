@@ -1,4 +1,5 @@
 """Helpers the rostest nodes share: collecting messages and waiting in sim or wall time."""
+
 import threading
 import time
 import unittest
@@ -76,8 +77,10 @@ def wait_for_controllers(count=5, ns='/arm1', timeout=60):
 
     def running():
         return sum(c.state == 'running' for c in list_controllers().controller)
-    assert wait_for(lambda: running() >= count, timeout), \
+
+    assert wait_for(lambda: running() >= count, timeout), (
         'only %d of %d controllers running in %s' % (running(), count, ns)
+    )
     return list_controllers
 
 

@@ -5,6 +5,7 @@ Run inside the sourced workspace (``make test`` does). Prints each suite's
 outcome as it goes and ends with one line ``N passed, N failed``; exits
 non-zero if anything failed, or if a suite ran no test at all.
 """
+
 import glob
 import os
 import subprocess
@@ -31,8 +32,17 @@ def count_junit(path):
 def run_pytest(out, suite):
     """test/unit (ROS-free) or test/integration (starts its own ROS processes)."""
     xml = os.path.join(out, suite + '.xml')
-    cmd = [sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider',
-           '--junitxml', xml, os.path.join(HERE, suite)]
+    cmd = [
+        sys.executable,
+        '-m',
+        'pytest',
+        '-q',
+        '-p',
+        'no:cacheprovider',
+        '--junitxml',
+        xml,
+        os.path.join(HERE, suite),
+    ]
     rc = subprocess.call(cmd)
     if not os.path.exists(xml):
         return 0, 1, ['%s tests: pytest exited %d without results' % (suite, rc)]
@@ -44,14 +54,22 @@ def run_rostest(path, out):
     home = os.path.join(out, name)
     env = dict(os.environ, ROS_HOME=home)
     start = time.monotonic()
-    proc = subprocess.run(['rostest', 'arm1', os.path.basename(path)], env=env,
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    proc = subprocess.run(
+        ['rostest', 'arm1', os.path.basename(path)],
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
     log = os.path.join(out, name + '.log')
     with open(log, 'w') as f:
         f.write(proc.stdout)
     # rostest writes one rosunit XML per <test> node (the per-method results).
-    results = [p for p in glob.glob(os.path.join(home, 'test_results', 'arm1', '*.xml'))
-               if not os.path.basename(p).startswith('rostest-')]
+    results = [
+        p
+        for p in glob.glob(os.path.join(home, 'test_results', 'arm1', '*.xml'))
+        if not os.path.basename(p).startswith('rostest-')
+    ]
     passed = failed = 0
     names = []
     for r in results:
@@ -62,8 +80,11 @@ def run_rostest(path, out):
     if passed + failed == 0:
         failed, names = 1, ['%s: ran no test' % name]
     status = 'ok' if not failed else 'FAILED (log: %s)' % log
-    print('rostest %-28s %3d passed, %d failed  %5.1f s  %s' % (
-        name, passed, failed, time.monotonic() - start, status), flush=True)
+    print(
+        'rostest %-28s %3d passed, %d failed  %5.1f s  %s'
+        % (name, passed, failed, time.monotonic() - start, status),
+        flush=True,
+    )
     if failed:
         print(proc.stdout[-4000:])
     return passed, failed, names
@@ -81,8 +102,13 @@ def run_lint():
     root = os.path.dirname(HERE)
     passed, failed, names = 0, 0, []
     for name, args in LINTERS:
-        proc = subprocess.run([sys.executable] + args, cwd=root, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, text=True)
+        proc = subprocess.run(
+            [sys.executable] + args,
+            cwd=root,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         ok = proc.returncode == 0
         print('lint %-12s %s' % (name, 'ok' if ok else 'FAILED'), flush=True)
         if ok:

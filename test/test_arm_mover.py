@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """arm_mover's /safe_move on arm1: moves and returns the elapsed time, clamps, never hangs."""
+
 import os
 import sys
 import time
@@ -46,12 +47,23 @@ class ArmMover(WorldTestCase):
         resp = self.safe_move(3.0, 0.6, -2.0, -0.4)
         self.assertGreater(resp.time_elapsed.to_sec(), 0.0)
         self.assertIsNotNone(self.arm.wait_at((1.0, 0.6, -1.0, -0.4), 0.05, 0))
-        texts = lambda: [m.msg for m in self.rosout.since(start) if m.name == '/arm_mover']
-        self.assertTrue(wait_for(lambda: any(
-            'joint1 = 3.000 is out of range [-1.570, 1.000]: clamped to 1.000' in t
-            for t in texts()), 5), texts())
-        self.assertTrue(any('joint3 = -2.000 is out of range [-1.000, 1.570]' in t
-                            for t in texts()), texts())
+
+        def texts():
+            return [m.msg for m in self.rosout.since(start) if m.name == '/arm_mover']
+
+        self.assertTrue(
+            wait_for(
+                lambda: any(
+                    'joint1 = 3.000 is out of range [-1.570, 1.000]: clamped to 1.000' in t
+                    for t in texts()
+                ),
+                5,
+            ),
+            texts(),
+        )
+        self.assertTrue(
+            any('joint3 = -2.000 is out of range [-1.000, 1.570]' in t for t in texts()), texts()
+        )
 
     def test_03_unreachable_target_answers_with_the_timeout_error(self):
         # arm_mover_tight lets joint2 go to 3.0, past the URDF limit the controller clamps to

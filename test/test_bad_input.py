@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """Bad input ends in a clear message naming the culprit, and the simulation keeps running."""
+
 import os
 import subprocess
 import sys
@@ -18,8 +19,9 @@ CM = '/arm1/controller_manager/'
 
 
 def run(*cmd, timeout=60):
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                          timeout=timeout)
+    proc = subprocess.run(
+        cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=timeout
+    )
     return proc.returncode, proc.stdout
 
 
@@ -37,27 +39,33 @@ class BadInput(WorldTestCase):
         return {c.name for c in self.list().controller if c.state == 'running'}
 
     def logged(self, since, *words):
-        return wait_for(lambda: any(all(w in m.msg for w in words)
-                                    for m in self.rosout.since(since)), 10)
+        return wait_for(
+            lambda: any(all(w in m.msg for w in words) for m in self.rosout.since(since)), 10
+        )
 
     def test_01_bad_controllers_fail_by_name_and_the_others_run(self):
-        good = {'joint_state_controller', 'joint1_position_controller',
-                'joint2_position_controller'}
+        good = {
+            'joint_state_controller',
+            'joint1_position_controller',
+            'joint2_position_controller',
+        }
         self.assertTrue(wait_for(lambda: self.running() == good, 60), self.running())
         load = rospy.ServiceProxy(CM + 'load_controller', LoadController)
-        for name, words in (('unknown_joint_controller', ['joint9']),
-                            ('no_p_controller', ['No p gain specified']),
-                            ('unknown_type_controller', ['JointTrajectoryController',
-                                                         'does not exist']),
-                            ('no_type_controller', ['type was not specified'])):
+        for name, words in (
+            ('unknown_joint_controller', ['joint9']),
+            ('no_p_controller', ['No p gain specified']),
+            ('unknown_type_controller', ['JointTrajectoryController', 'does not exist']),
+            ('no_type_controller', ['type was not specified']),
+        ):
             mark = time.monotonic()
             self.assertFalse(load(name).ok, name)
             self.assertTrue(self.logged(mark, name, *words), 'no message naming %s' % name)
         self.assertEqual(self.running(), good)
 
     def test_02_missing_mesh_names_its_path(self):
-        xml = rospy.get_param('/robot_description').replace('meshes/link3.STL',
-                                                             'meshes/no_such_link.STL')
+        xml = rospy.get_param('/robot_description').replace(
+            'meshes/link3.STL', 'meshes/no_such_link.STL'
+        )
         spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
         resp = spawn('arm1_broken', xml, '/broken', None, '')
         self.assertFalse(resp.success)
@@ -66,8 +74,18 @@ class BadInput(WorldTestCase):
 
     def test_03_spawn_model_without_description_gives_up(self):
         start = time.monotonic()
-        rc, out = run('rosrun', 'arm1', 'spawn_model', '-urdf', '-param', 'no_such_description',
-                      '-model', 'ghost', '-timeout', '2')
+        rc, out = run(
+            'rosrun',
+            'arm1',
+            'spawn_model',
+            '-urdf',
+            '-param',
+            'no_such_description',
+            '-model',
+            'ghost',
+            '-timeout',
+            '2',
+        )
         self.assertNotEqual(rc, 0)
         self.assertIn('waiting for parameter /no_such_description', out)
         self.assertIn('gave up after 2 s waiting for parameter /no_such_description', out)

@@ -1,5 +1,7 @@
 #!/usr/bin/env python
-"""arm1 under gazebo.launch: controllers, joint_states timing, /clock, step response, limits, NaN."""
+"""arm1 under gazebo.launch: controllers, joint_states timing, /clock, step response, limits,
+NaN."""
+
 import math
 import os
 import sys
@@ -15,8 +17,12 @@ from std_msgs.msg import Float64
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import JOINTS, WorldTestCase, positions, sim_wait, wait_for  # noqa: E402
 
-LIMITS = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
-          'joint4': (-0.8, 1.57)}
+LIMITS = {
+    'joint1': (-1.57, 1.57),
+    'joint2': (0.01, 1.57),
+    'joint3': (-1.0, 1.57),
+    'joint4': (-0.8, 1.57),
+}
 
 
 class Basics(WorldTestCase):
@@ -27,8 +33,12 @@ class Basics(WorldTestCase):
     @classmethod
     def setUpClass(cls):
         super().setUpClass()
-        cls.pub = {j: rospy.Publisher('/arm1/%s_position_controller/command' % j, Float64,
-                                      queue_size=1, latch=True) for j in JOINTS}
+        cls.pub = {
+            j: rospy.Publisher(
+                '/arm1/%s_position_controller/command' % j, Float64, queue_size=1, latch=True
+            )
+            for j in JOINTS
+        }
 
     def command(self, joint, value):
         self.pub[joint].publish(value)
@@ -38,26 +48,39 @@ class Basics(WorldTestCase):
         for joint, value in targets.items():
             self.command(joint, value)
         for joint, value in targets.items():
-            self.assertTrue(self.settled(joint, value, 0.02, 30), '%s did not reach %.2f: %s' % (
-                joint, value, positions(self.states.last())))
+            self.assertTrue(
+                self.settled(joint, value, 0.02, 30),
+                '%s did not reach %.2f: %s' % (joint, value, positions(self.states.last())),
+            )
 
     def settled(self, joint, target, tol, timeout):
         """True once the joint has stayed within tol of target for 0.5 s of sim time."""
+
         def ok():
             msgs = [m for m in self.states.since(time.monotonic() - 3.0)]
             recent = [m for m in msgs if (msgs[-1].header.stamp - m.header.stamp).to_sec() <= 0.5]
-            return len(recent) >= 20 and all(abs(positions(m)[joint] - target) <= tol
-                                              for m in recent)
+            return len(recent) >= 20 and all(
+                abs(positions(m)[joint] - target) <= tol for m in recent
+            )
+
         return wait_for(ok, timeout)
 
     def test_00_services_and_state_have_upstream_type_names(self):
         # Upstream's tools (rqt_controller_manager, the real spawner) find a controller
         # manager by its services' type names; md5sums alone would not tell the types apart.
-        expected = {'/gazebo/spawn_urdf_model': 'gazebo_msgs/SpawnModel',
-                    '/gazebo/delete_model': 'gazebo_msgs/DeleteModel',
-                    '/gazebo/set_model_configuration': 'gazebo_msgs/SetModelConfiguration'}
-        for name in ('list_controllers', 'list_controller_types', 'load_controller',
-                     'unload_controller', 'switch_controller', 'reload_controller_libraries'):
+        expected = {
+            '/gazebo/spawn_urdf_model': 'gazebo_msgs/SpawnModel',
+            '/gazebo/delete_model': 'gazebo_msgs/DeleteModel',
+            '/gazebo/set_model_configuration': 'gazebo_msgs/SetModelConfiguration',
+        }
+        for name in (
+            'list_controllers',
+            'list_controller_types',
+            'load_controller',
+            'unload_controller',
+            'switch_controller',
+            'reload_controller_libraries',
+        ):
             kind = ''.join(w.capitalize() for w in name.split('_'))
             expected['/arm1/controller_manager/' + name] = 'controller_manager_msgs/' + kind
         got = {name: rosservice.get_service_type(name) for name in expected}
@@ -68,11 +91,15 @@ class Basics(WorldTestCase):
     def test_01_controllers_running(self):
         resp = self.list_controllers()
         got = {c.name: (c.type, c.state) for c in resp.controller}
-        self.assertEqual(got['joint_state_controller'],
-                         ('joint_state_controller/JointStateController', 'running'))
+        self.assertEqual(
+            got['joint_state_controller'],
+            ('joint_state_controller/JointStateController', 'running'),
+        )
         for j in JOINTS:
-            self.assertEqual(got['%s_position_controller' % j],
-                             ('effort_controllers/JointPositionController', 'running'))
+            self.assertEqual(
+                got['%s_position_controller' % j],
+                ('effort_controllers/JointPositionController', 'running'),
+            )
 
     def test_02_joint_states_rate_and_clock(self):
         start = time.monotonic()
@@ -96,23 +123,31 @@ class Basics(WorldTestCase):
         # joint1 turns about the vertical and joint4 carries almost nothing: within 0.02 rad.
         # joint3 lifts link3 and link4 against gravity, and with the seed's gains (no
         # i_clamp, so no integral term) it holds short by gravity torque / p: 20-30 mrad here.
-        for joint, target, tol in (('joint1', 0.5, 0.02), ('joint4', 0.4, 0.02),
-                                   ('joint3', -0.5, 0.04)):
+        for joint, target, tol in (
+            ('joint1', 0.5, 0.02),
+            ('joint4', 0.4, 0.02),
+            ('joint3', -0.5, 0.04),
+        ):
             self.command(joint, target)
-            self.assertTrue(self.settled(joint, target, tol, 30),
-                            '%s did not settle at %.2f: %s' % (
-                                joint, target, positions(self.states.last())[joint]))
+            self.assertTrue(
+                self.settled(joint, target, tol, 30),
+                '%s did not settle at %.2f: %s'
+                % (joint, target, positions(self.states.last())[joint]),
+            )
 
     def test_04_out_of_range_is_clamped(self):
         state = []
-        sub = rospy.Subscriber('/arm1/joint1_position_controller/state', JointControllerState,
-                               state.append)
+        sub = rospy.Subscriber(
+            '/arm1/joint1_position_controller/state', JointControllerState, state.append
+        )
         self.command('joint1', 3.0)
         self.command('joint3', -2.0)
-        self.assertTrue(self.settled('joint1', LIMITS['joint1'][1], 0.02, 30),
-                        positions(self.states.last()))
-        self.assertTrue(self.settled('joint3', LIMITS['joint3'][0], 0.03, 30),
-                        positions(self.states.last()))
+        self.assertTrue(
+            self.settled('joint1', LIMITS['joint1'][1], 0.02, 30), positions(self.states.last())
+        )
+        self.assertTrue(
+            self.settled('joint3', LIMITS['joint3'][0], 0.03, 30), positions(self.states.last())
+        )
         self.assertTrue(wait_for(lambda: state and state[-1].set_point == 1.57, 5))
         sub.unregister()
         last = positions(self.states.last())
@@ -129,9 +164,15 @@ class Basics(WorldTestCase):
         sim_wait(1.0)
         self.assertTrue(self.settled('joint1', 0.3, 0.02, 10), positions(self.states.last()))
         self.assertTrue(all(math.isfinite(p) for p in self.states.last().position))
-        self.assertTrue(wait_for(lambda: any(
-            'non-finite' in m.msg and 'joint1' in m.msg for m in self.rosout.since(start)), 5),
-            'no warning about the NaN command on /rosout')
+        self.assertTrue(
+            wait_for(
+                lambda: any(
+                    'non-finite' in m.msg and 'joint1' in m.msg for m in self.rosout.since(start)
+                ),
+                5,
+            ),
+            'no warning about the NaN command on /rosout',
+        )
 
 
 if __name__ == '__main__':

@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """arm1's camera in the world: 30 Hz of sim time while subscribed, nothing rendered without."""
+
 import math
 import os
 import sys
@@ -10,8 +11,16 @@ from sensor_msgs.msg import CameraInfo
 from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from camera_util import (LOOK, UP, ImageRecorder, JointCommander, cpu_seconds,  # noqa: E402
-                         node_pid, render_processes, uniform)
+from camera_util import (  # noqa: E402
+    LOOK,
+    UP,
+    ImageRecorder,
+    JointCommander,
+    cpu_seconds,
+    node_pid,
+    render_processes,
+    uniform,
+)
 from rostest_util import Recorder, WorldTestCase, sim_wait, wait_for  # noqa: E402
 
 RATE = 30.0
@@ -69,8 +78,10 @@ class Camera(WorldTestCase):
         info_stamps = {m.header.stamp.to_sec() for _, m in info.msgs}
         self.assertTrue(set(stamps[:-1]) <= info_stamps, 'a frame without its camera_info')
         rtf = [m.data for _, m in self.rtf.msgs[-3:]]
-        print('camera: %d frames, %.3f Hz of sim time; real-time factor while streaming %s'
-              % (len(stamps), rate, ', '.join('%.2f' % r for r in rtf)))
+        print(
+            'camera: %d frames, %.3f Hz of sim time; real-time factor while streaming %s'
+            % (len(stamps), rate, ', '.join('%.2f' % r for r in rtf))
+        )
 
     def test_03_idle_again_without_a_subscriber(self):
         renderers = render_processes(self.world)

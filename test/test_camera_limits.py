@@ -2,6 +2,7 @@
 """Cameras against the world's limits and failures, in the default timing (physics never waits
 for rendering): a 6000x6000 camera is refused, a one-link camera model streams, a killed render
 process is replaced while /clock goes on, and a deleted model's camera is gone for good."""
+
 import os
 import signal
 import sys
@@ -12,8 +13,15 @@ import rostest
 from rosgraph_msgs.msg import Log
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from camera_util import (ImageRecorder, camera_box_urdf, clock_rate, delete_model,  # noqa: E402
-                         node_pid, render_processes, spawn_urdf)
+from camera_util import (  # noqa: E402
+    ImageRecorder,
+    camera_box_urdf,
+    clock_rate,
+    delete_model,
+    node_pid,
+    render_processes,
+    spawn_urdf,
+)
 from rostest_util import WorldTestCase, wait_for  # noqa: E402
 
 TOPIC = '/eye/image_raw'
@@ -79,9 +87,14 @@ class CameraLimits(WorldTestCase):
             self.assertEqual(len(victims), 2)
             killed_at, sim_at = time.monotonic(), self.clock.last().clock.to_sec()
             os.kill(victims[0], signal.SIGKILL)
-            back = wait_for(lambda: sum(m[0] > sim_at for m in images.meta) >= 20
-                            and len(render_processes(self.world)) == 2
-                            and victims[0] not in render_processes(self.world), 60)
+            back = wait_for(
+                lambda: (
+                    sum(m[0] > sim_at for m in images.meta) >= 20
+                    and len(render_processes(self.world)) == 2
+                    and victims[0] not in render_processes(self.world)
+                ),
+                60,
+            )
             self.assertTrue(back, 'images or render processes did not come back')
         finally:
             images.close()

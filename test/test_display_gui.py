@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """display.launch for real: under Xvfb, RViz shows arm1's model."""
+
 import os
 import sys
 import unittest
@@ -25,15 +26,24 @@ class DisplayGui(unittest.TestCase):
         rospy.init_node('test_display_gui')
         self.display.roslaunch('arm1', 'display.launch', 'gui:=false')
         master = rosgraph.Master('/test_display_gui')
-        self.assertTrue(wait_for(lambda: any(
-            '/rviz' in nodes for topic, nodes in master.getSystemState()[1]
-            if topic == '/tf'), 60), 'RViz did not subscribe to /tf')
+        self.assertTrue(
+            wait_for(
+                lambda: any(
+                    '/rviz' in nodes
+                    for topic, nodes in master.getSystemState()[1]
+                    if topic == '/tf'
+                ),
+                60,
+            ),
+            'RViz did not subscribe to /tf',
+        )
 
         last = []
 
         def arm_drawn():
             last[:] = [self.display.screen()]
             return orange(last[0]).sum() > 300
+
         drawn = wait_for(arm_drawn, 30, poll=0.5)
         rgb = last[0]
         shot = self.display.save(rgb, 'arm1_rviz_screenshot.png')

@@ -13,6 +13,7 @@ unload_controller, switch_controller, reload_controller_libraries}, each positio
 controller subscribes to its ``command`` topic, publishes ``state`` and serves its gains at
 ``pid/set_parameters`` (dynamic_reconfigure).
 """
+
 import math
 import os
 import subprocess
@@ -36,16 +37,27 @@ from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import ImageRecorder  # noqa: E402
-from faults_util import (ClockPace, World, finite_arm, logged, raw_service_call,  # noqa: E402
-                         urdf)
-from rostest_util import (Recorder, clock_recorder, joint_recorder, rosout_recorder,  # noqa: E402
-                          sim_wait, wait_for, wait_for_controllers)
+from faults_util import ClockPace, World, finite_arm, logged, raw_service_call, urdf  # noqa: E402
+from rostest_util import (  # noqa: E402
+    Recorder,
+    clock_recorder,
+    joint_recorder,
+    rosout_recorder,
+    sim_wait,
+    wait_for,
+    wait_for_controllers,
+)
+
 from arm1.ros.node_handle import synchronous_publisher  # noqa: E402
 
 CM = '/arm1/controller_manager/'
 CTRL = '/arm1/%s_position_controller'
-LIMITS = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
-          'joint4': (-0.8, 1.57)}
+LIMITS = {
+    'joint1': (-1.57, 1.57),
+    'joint2': (0.01, 1.57),
+    'joint3': (-1.0, 1.57),
+    'joint4': (-0.8, 1.57),
+}
 CONTROLLERS = {'joint_state_controller'} | {'joint%d_position_controller' % i for i in range(1, 5)}
 BEST_EFFORT, STRICT = 1, 2
 MIN_PACE = 0.9  # real-time factor from /clock that floods must not push the world below
@@ -63,13 +75,16 @@ class FaultsInputs(unittest.TestCase):
         cls.world = World()
         # Written in this thread (no queue to drop from), so a burst reaches the world whole;
         # joint4's command topic is left free for the wrong-type publisher.
-        cls.cmd = {j: synchronous_publisher(CTRL % j + '/command', Float64)
-                   for j in ('joint1', 'joint2', 'joint3')}
-        cls.ctrl_state = {j: Recorder(CTRL % j + '/state', JointControllerState)
-                          for j in ('joint1', 'joint3', 'joint4')}
+        cls.cmd = {
+            j: synchronous_publisher(CTRL % j + '/command', Float64)
+            for j in ('joint1', 'joint2', 'joint3')
+        }
+        cls.ctrl_state = {
+            j: Recorder(CTRL % j + '/state', JointControllerState)
+            for j in ('joint1', 'joint3', 'joint4')
+        }
         assert wait_for(lambda: all(p.get_num_connections() for p in cls.cmd.values()), 30)
-        cls.configure = rospy.ServiceProxy('/gazebo/set_model_configuration',
-                                           SetModelConfiguration)
+        cls.configure = rospy.ServiceProxy('/gazebo/set_model_configuration', SetModelConfiguration)
         cls.spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
         cls.delete = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)
         cls.load = rospy.ServiceProxy(CM + 'load_controller', LoadController)
@@ -96,8 +111,10 @@ class FaultsInputs(unittest.TestCase):
         self.cmd[joint].publish(value)
         lo, hi = LIMITS[joint]
         want = min(max(value, lo), hi)
-        self.assertTrue(wait_for(lambda: self.set_point(joint) == want, 20),
-                        '%s set point %s, not %s' % (joint, self.set_point(joint), want))
+        self.assertTrue(
+            wait_for(lambda: self.set_point(joint) == want, 20),
+            '%s set point %s, not %s' % (joint, self.set_point(joint), want),
+        )
 
     def assert_logged(self, since, *words):
         msg = logged(self.rosout, since, *words)
@@ -120,8 +137,9 @@ class FaultsInputs(unittest.TestCase):
         mark = time.monotonic()
         self.command('joint1', sys.float_info.max)
         self.assertEqual(self.set_point('joint1'), 1.57)
-        self.assert_logged(mark, 'joint1_position_controller', 'joint1', 'outside its limits',
-                           'clamped to 1.57')
+        self.assert_logged(
+            mark, 'joint1_position_controller', 'joint1', 'outside its limits', 'clamped to 1.57'
+        )
         self.command('joint1', -1e300)
         self.assertEqual(self.set_point('joint1'), -1.57)
         self.command('joint1', 0.0)
@@ -129,9 +147,20 @@ class FaultsInputs(unittest.TestCase):
 
     def test_a_command_of_the_wrong_message_type_is_refused_and_the_target_kept(self):
         before = wait_for(lambda: self.set_point('joint4'), 10)
-        proc = subprocess.Popen(['rostopic', 'pub', '-r', '10', CTRL % 'joint4' + '/command',
-                                 'std_msgs/String', 'data: up'],
-                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        proc = subprocess.Popen(
+            [
+                'rostopic',
+                'pub',
+                '-r',
+                '10',
+                CTRL % 'joint4' + '/command',
+                'std_msgs/String',
+                'data: up',
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         try:
             time.sleep(3.0)
         finally:
@@ -217,14 +246,18 @@ class FaultsInputs(unittest.TestCase):
             resp = self.spawn('lone_box', urdf('lone_box', 1), '', None, '')
             self.assertTrue(resp.success, resp.status_message)
             after = rospy.Time.now().to_sec()
-            self.assertTrue(wait_for(lambda: len([m for m in images.meta if m[0] > after]) >= 10,
-                                     60), 'the camera stopped after spawning a jointless model')
+            self.assertTrue(
+                wait_for(lambda: len([m for m in images.meta if m[0] > after]) >= 10, 60),
+                'the camera stopped after spawning a jointless model',
+            )
             self.assert_world_runs()
             resp = self.delete('lone_box')
             self.assertTrue(resp.success, resp.status_message)
             after = rospy.Time.now().to_sec()
-            self.assertTrue(wait_for(lambda: any(m[0] > after for m in images.meta), 60),
-                            'the camera stopped after deleting it')
+            self.assertTrue(
+                wait_for(lambda: any(m[0] > after for m in images.meta), 60),
+                'the camera stopped after deleting it',
+            )
         finally:
             images.close()
         self.assert_world_runs()
@@ -283,19 +316,24 @@ class FaultsInputs(unittest.TestCase):
         self.assertFalse(self.switch(['no_such_controller'], [], STRICT, False, 0.0).ok)
         self.assert_logged(mark, "Could not start controller 'no_such_controller'", 'not loaded')
         mark = time.monotonic()
-        self.assertFalse(self.switch([], ['joint1_position_controller', 'no_such_controller'],
-                                     STRICT, False, 0.0).ok)
+        self.assertFalse(
+            self.switch(
+                [], ['joint1_position_controller', 'no_such_controller'], STRICT, False, 0.0
+            ).ok
+        )
         self.assert_logged(mark, "Could not stop controller 'no_such_controller'")
         self.assert_world_runs()  # joint1_position_controller was not stopped
 
     def test_best_effort_switch_skips_unknown_names_with_one_warning(self):
         mark = time.monotonic()
-        resp = self.switch(['no_such_controller', 'joint1_position_controller'], ['ghost'],
-                           BEST_EFFORT, False, 0.0)
+        resp = self.switch(
+            ['no_such_controller', 'joint1_position_controller'], ['ghost'], BEST_EFFORT, False, 0.0
+        )
         self.assertTrue(resp.ok)
         self.assert_logged(mark, "Not starting controller 'no_such_controller'", 'not loaded')
-        self.assert_logged(mark, "Not starting controller 'joint1_position_controller'",
-                           'already running')
+        self.assert_logged(
+            mark, "Not starting controller 'joint1_position_controller'", 'already running'
+        )
         self.assert_logged(mark, "Not stopping controller 'ghost'", 'not loaded')
         self.assert_world_runs()
 
@@ -322,10 +360,12 @@ class FaultsInputs(unittest.TestCase):
 
     def test_switch_with_a_non_finite_or_huge_timeout_waits_for_the_update(self):
         for timeout in (math.nan, math.inf, 1e300, -1.0):
-            self.assertTrue(self.switch([], ['joint_state_controller'], STRICT, False,
-                                        timeout).ok, timeout)
-            self.assertTrue(self.switch(['joint_state_controller'], [], STRICT, False,
-                                        timeout).ok, timeout)
+            self.assertTrue(
+                self.switch([], ['joint_state_controller'], STRICT, False, timeout).ok, timeout
+            )
+            self.assertTrue(
+                self.switch(['joint_state_controller'], [], STRICT, False, timeout).ok, timeout
+            )
         self.assert_world_runs()
 
     # -- pid/set_parameters (dynamic_reconfigure) -------------------------------------
@@ -353,10 +393,13 @@ class FaultsInputs(unittest.TestCase):
         client = self.pid_client()
         before = client.get_configuration(10)
         try:
-            after = client.update_configuration({'p': 1e12, 'd': 1e12, 'i': 1e12,
-                                                 'i_clamp_max': 1e12})
-            self.assertEqual((after['p'], after['i'], after['d'], after['i_clamp_max']),
-                             (100000.0, 100000.0, 1000.0, 100000.0))
+            after = client.update_configuration(
+                {'p': 1e12, 'd': 1e12, 'i': 1e12, 'i_clamp_max': 1e12}
+            )
+            self.assertEqual(
+                (after['p'], after['i'], after['d'], after['i_clamp_max']),
+                (100000.0, 100000.0, 1000.0, 100000.0),
+            )
             self.assertTrue(wait_for(lambda: self.gains_in_state()[0] == 100000.0, 10))
             self.cmd['joint1'].publish(0.2)
             sim_wait(1.0)
@@ -364,8 +407,9 @@ class FaultsInputs(unittest.TestCase):
             state = self.ctrl_state['joint1'].last()
             self.assertTrue(math.isfinite(state.command) and math.isfinite(state.error))
         finally:
-            client.update_configuration({k: before[k] for k in
-                                         ('p', 'i', 'd', 'i_clamp_min', 'i_clamp_max')})
+            client.update_configuration(
+                {k: before[k] for k in ('p', 'i', 'd', 'i_clamp_min', 'i_clamp_max')}
+            )
             client.close()
         self.command('joint1', 0.0)
         self.assert_world_runs()
@@ -396,19 +440,31 @@ class FaultsInputs(unittest.TestCase):
         self.assert_world_runs()
 
     def test_a_request_of_the_wrong_service_type_is_refused_naming_the_mismatch(self):
-        reply = raw_service_call('/gazebo/delete_model', {
-            'service': '/gazebo/delete_model', 'md5sum': SpawnModel._md5sum,
-            'callerid': '/faults_raw'}, b'')
+        reply = raw_service_call(
+            '/gazebo/delete_model',
+            {
+                'service': '/gazebo/delete_model',
+                'md5sum': SpawnModel._md5sum,
+                'callerid': '/faults_raw',
+            },
+            b'',
+        )
         self.assertIn(b'md5sums do not match', reply)
         self.assertTrue(self.delete('ghost_model').status_message)
         self.assert_world_runs()
 
     def test_a_truncated_request_body_is_refused_and_the_service_keeps_working(self):
-        header = {'service': '/gazebo/set_model_configuration',
-                  'md5sum': SetModelConfiguration._md5sum, 'callerid': '/faults_raw'}
+        header = {
+            'service': '/gazebo/set_model_configuration',
+            'md5sum': SetModelConfiguration._md5sum,
+            'callerid': '/faults_raw',
+        }
         # a model_name claiming 2 GB, then nothing
-        raw_service_call('/gazebo/set_model_configuration', header,
-                         b'\x08\x00\x00\x00' + b'\xff\xff\xff\x7f' + b'abcd')
+        raw_service_call(
+            '/gazebo/set_model_configuration',
+            header,
+            b'\x08\x00\x00\x00' + b'\xff\xff\xff\x7f' + b'abcd',
+        )
         resp = self.configure('ghost_model', '', [], [])
         self.assertFalse(resp.success)
         self.assert_world_runs()
@@ -428,13 +484,17 @@ class FaultsInputs(unittest.TestCase):
             pub.publish(0.3 if k % 2 else -0.3)
         pub.publish(0.25)
         sent = time.monotonic() - start[0]
-        self.assertTrue(wait_for(lambda: self.set_point('joint3') == 0.25, 60),
-                        'the last command of the burst never arrived')
+        self.assertTrue(
+            wait_for(lambda: self.set_point('joint3') == 0.25, 60),
+            'the last command of the burst never arrived',
+        )
         applied = time.monotonic() - start[0]
         end = self.pace_window_end(start)
         factor = self.pace.factor(start, end)
-        print('10000 commands sent in %.2f s, the last applied after %.2f s: real-time factor '
-              '%.3f over %.1f s from the first' % (sent, applied, factor, end[0] - start[0]))
+        print(
+            '10000 commands sent in %.2f s, the last applied after %.2f s: real-time factor '
+            '%.3f over %.1f s from the first' % (sent, applied, factor, end[0] - start[0])
+        )
         self.assertGreaterEqual(factor, MIN_PACE)
         self.command('joint3', 0.0)
         self.assert_world_runs()
@@ -442,8 +502,11 @@ class FaultsInputs(unittest.TestCase):
     def test_500_service_calls_from_8_threads_are_all_answered_and_the_clock_keeps_pace(self):
         proxies = [
             (CM + 'list_controller_types', ListControllerTypes, ()),
-            ('/gazebo/set_model_configuration', SetModelConfiguration,
-             ('arm1', '', ['no_such_joint'], [0.0])),
+            (
+                '/gazebo/set_model_configuration',
+                SetModelConfiguration,
+                ('arm1', '', ['no_such_joint'], [0.0]),
+            ),
             (CM + 'load_controller', LoadController, ('joint1_position_controller',)),
             ('/gazebo/delete_model', DeleteModel, ('ghost_model',)),
         ]
@@ -459,6 +522,7 @@ class FaultsInputs(unittest.TestCase):
                 except Exception as exc:  # counted, reported below
                     with lock:
                         errors.append('%s: %s' % (name, exc))
+
         start = self.pace.now()
         threads = [threading.Thread(target=worker, args=(k,)) for k in range(8)]
         for t in threads:
@@ -468,8 +532,10 @@ class FaultsInputs(unittest.TestCase):
         took = time.monotonic() - start[0]
         end = self.pace_window_end(start)
         factor = self.pace.factor(start, end)
-        print('504 service calls in %.1f s: real-time factor %.3f over %.1f s from the first'
-              % (took, factor, end[0] - start[0]))
+        print(
+            '504 service calls in %.1f s: real-time factor %.3f over %.1f s from the first'
+            % (took, factor, end[0] - start[0])
+        )
         self.assertEqual(errors, [])
         self.assertEqual(len(answered), 504)
         self.assertGreaterEqual(factor, MIN_PACE)

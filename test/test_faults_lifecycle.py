@@ -11,6 +11,7 @@
 - the ROS master killed and started again (a private master, so the rostest one stays):
   the world keeps stepping, serves the connections it had, and registers again.
 """
+
 import os
 import signal
 import socket
@@ -33,12 +34,17 @@ from std_srvs.srv import Empty
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import ImageRecorder  # noqa: E402
 from faults_util import ClockPace, World, finite_arm, logged, urdf  # noqa: E402
-from rostest_util import (Recorder, clock_recorder, joint_recorder, rosout_recorder,  # noqa: E402
-                          sim_wait, wait_for, wait_for_controllers)
+from rostest_util import (  # noqa: E402
+    Recorder,
+    clock_recorder,
+    joint_recorder,
+    rosout_recorder,
+    wait_for,
+    wait_for_controllers,
+)
 
 CM = '/arm1/controller_manager/'
-CONTROLLERS = ['joint_state_controller'] + ['joint%d_position_controller' % i
-                                            for i in range(1, 5)]
+CONTROLLERS = ['joint_state_controller'] + ['joint%d_position_controller' % i for i in range(1, 5)]
 THREAD_SLACK = 2  # threads the world may hold beyond its count before the cycles
 RSS_SLACK_MB = 10.0  # resident memory it may grow by over the cycles, after a warm-up
 
@@ -102,7 +108,7 @@ class LineReader:
             self.lines.append(line.rstrip('\n'))
 
     def clocks(self):
-        return [float(l.split()[1]) for l in list(self.lines) if l.startswith('clock ')]
+        return [float(line.split()[1]) for line in list(self.lines) if line.startswith('clock ')]
 
 
 class FaultsLifecycle(unittest.TestCase):
@@ -115,8 +121,7 @@ class FaultsLifecycle(unittest.TestCase):
         cls.states = joint_recorder()
         cls.list = wait_for_controllers(5)
         cls.world = World()
-        cls.configure = rospy.ServiceProxy('/gazebo/set_model_configuration',
-                                           SetModelConfiguration)
+        cls.configure = rospy.ServiceProxy('/gazebo/set_model_configuration', SetModelConfiguration)
         cls.spawners = []  # spawner processes this test started
 
     @classmethod
@@ -135,8 +140,12 @@ class FaultsLifecycle(unittest.TestCase):
         self.assertTrue(self.world.delete('probe').success)
 
     def python(self, code):
-        return subprocess.Popen([sys.executable, '-c', code], stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, text=True)
+        return subprocess.Popen(
+            [sys.executable, '-c', code],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
 
     # -- clients killed mid-call ---------------------------------------------------------
     def test_a_client_killed_mid_call_leaves_the_world_serving(self):
@@ -169,15 +178,21 @@ class FaultsLifecycle(unittest.TestCase):
             proc.wait(10)
         finally:
             unpause()
+
         # The switch asked for is carried out at the next update (as in ros_control), and the
         # thread that served it ends although its client is gone.
-        states = lambda: {c.name: c.state for c in self.list().controller}
-        self.assertTrue(wait_for(lambda: states()['joint_state_controller'] == 'stopped', 10),
-                        states())
+        def states():
+            return {c.name: c.state for c in self.list().controller}
+
+        self.assertTrue(
+            wait_for(lambda: states()['joint_state_controller'] == 'stopped', 10), states()
+        )
         switch = rospy.ServiceProxy(CM + 'switch_controller', SwitchController)
         self.assertTrue(switch(['joint_state_controller'], [], 2, False, 5.0).ok)
-        self.assertTrue(wait_for(lambda: self.world.threads() <= threads + THREAD_SLACK, 10),
-                        '%d threads, %d before' % (self.world.threads(), threads))
+        self.assertTrue(
+            wait_for(lambda: self.world.threads() <= threads + THREAD_SLACK, 10),
+            '%d threads, %d before' % (self.world.threads(), threads),
+        )
         self.assert_world_serves()
 
     # -- the camera's render process killed -------------------------------------------------
@@ -190,11 +205,14 @@ class FaultsLifecycle(unittest.TestCase):
             mark, killed_at = time.monotonic(), rospy.Time.now().to_sec()
             renderers[0].kill()
             renderers[0].wait(10)
-            resumed = wait_for(lambda: len([m for m in images.meta if m[0] > killed_at + 0.5])
-                               >= 10, 30)
+            resumed = wait_for(
+                lambda: len([m for m in images.meta if m[0] > killed_at + 0.5]) >= 10, 30
+            )
             error = logged(self.rosout, mark, 'rgb_camera', timeout=0 if resumed else 5)
-            print('render process %d killed: %s' % (renderers[0].pid, 'images resumed'
-                                                    if resumed else 'error: %s' % error))
+            print(
+                'render process %d killed: %s'
+                % (renderers[0].pid, 'images resumed' if resumed else 'error: %s' % error)
+            )
             self.assertTrue(resumed or error, 'images stopped and nothing names the camera')
             self.assertTrue(self.pace.advances(2.0), '/clock stopped')
         finally:
@@ -220,11 +238,17 @@ class FaultsLifecycle(unittest.TestCase):
         start = time.monotonic()
         self.cycle_small_model(50)
         took = time.monotonic() - start
-        after_threads = wait_for(lambda: self.world.threads() <= threads + THREAD_SLACK and
-                                 self.world.threads(), 10) or self.world.threads()
+        after_threads = (
+            wait_for(
+                lambda: self.world.threads() <= threads + THREAD_SLACK and self.world.threads(), 10
+            )
+            or self.world.threads()
+        )
         growth = self.world.rss_mb() - rss
-        print('50 spawn/delete cycles in %.1f s: threads %d -> %d, RSS %.1f MB %+.1f MB'
-              % (took, threads, after_threads, rss, growth))
+        print(
+            '50 spawn/delete cycles in %.1f s: threads %d -> %d, RSS %.1f MB %+.1f MB'
+            % (took, threads, after_threads, rss, growth)
+        )
         self.assertLessEqual(after_threads, threads + THREAD_SLACK)
         self.assertLess(growth, RSS_SLACK_MB)
         self.assertEqual(len(self.world.process.children()), children)
@@ -234,24 +258,34 @@ class FaultsLifecycle(unittest.TestCase):
         """Delete arm1, spawn it again from robot_description and start its controllers."""
         resp = self.world.delete('arm1')
         self.assertTrue(resp.success, resp.status_message)
-        self.assertTrue(wait_for(lambda: not self.service_up(CM + 'list_controllers'), 10),
-                        'the deleted arm1 still offers its controller manager')
+        self.assertTrue(
+            wait_for(lambda: not self.service_up(CM + 'list_controllers'), 10),
+            'the deleted arm1 still offers its controller manager',
+        )
         resp = self.world.spawn('arm1', rospy.get_param('/robot_description'))
         self.assertTrue(resp.success, resp.status_message)
         for proc in self.spawners:
             if proc.poll() is None:  # its controllers went with the old arm1
                 proc.send_signal(signal.SIGINT)
                 proc.wait(30)
-        proc = subprocess.Popen(['rosrun', 'arm1', 'spawner', '__ns:=/arm1'] + CONTROLLERS,
-                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        proc = subprocess.Popen(
+            ['rosrun', 'arm1', 'spawner', '__ns:=/arm1'] + CONTROLLERS,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         self.spawners.append(proc)
         reader = LineReader(proc)
         rospy.wait_for_service(CM + 'list_controllers', 30)
         list_controllers = rospy.ServiceProxy(CM + 'list_controllers', ListControllers)
-        running = lambda: sorted(c.name for c in list_controllers().controller
-                                 if c.state == 'running')
-        self.assertTrue(wait_for(lambda: running() == sorted(CONTROLLERS), 60),
-                        'running: %s; spawner said:\n%s' % (running(), '\n'.join(reader.lines)))
+
+        def running():
+            return sorted(c.name for c in list_controllers().controller if c.state == 'running')
+
+        self.assertTrue(
+            wait_for(lambda: running() == sorted(CONTROLLERS), 60),
+            'running: %s; spawner said:\n%s' % (running(), '\n'.join(reader.lines)),
+        )
         self.assertNotIn('already registered', '\n'.join(reader.lines))
 
     @staticmethod
@@ -270,23 +304,34 @@ class FaultsLifecycle(unittest.TestCase):
         for _ in range(3):
             self.respawn_arm1()
         time.sleep(1.0)
-        after_threads = wait_for(lambda: self.world.threads() <= threads + THREAD_SLACK and
-                                 self.world.threads(), 10) or self.world.threads()
+        after_threads = (
+            wait_for(
+                lambda: self.world.threads() <= threads + THREAD_SLACK and self.world.threads(), 10
+            )
+            or self.world.threads()
+        )
         growth = self.world.rss_mb() - rss
-        print('arm1 respawned 3 times with its controllers: threads %d -> %d, RSS %.1f MB '
-              '%+.1f MB' % (threads, after_threads, rss, growth))
+        print(
+            'arm1 respawned 3 times with its controllers: threads %d -> %d, RSS %.1f MB '
+            '%+.1f MB' % (threads, after_threads, rss, growth)
+        )
         self.assertLessEqual(after_threads, threads + THREAD_SLACK)
         self.assertLess(growth, RSS_SLACK_MB)
         self.assertIsNone(logged(self.rosout, mark, 'already registered', timeout=0))
         # The new arm takes commands and live gains (checked after counting threads: rospy
         # keeps a thread per subscriber of a queued publisher until its next message).
         state = Recorder('/arm1/joint1_position_controller/state', JointControllerState)
-        cmd = rospy.Publisher('/arm1/joint1_position_controller/command', Float64,
-                              queue_size=1, latch=True)
+        cmd = rospy.Publisher(
+            '/arm1/joint1_position_controller/command', Float64, queue_size=1, latch=True
+        )
         cmd.publish(0.4)
-        self.assertTrue(wait_for(lambda: state.last() is not None
-                                 and abs(state.last().process_value - 0.4) < 0.05, 30),
-                        'joint1 did not follow its command after the respawn')
+        self.assertTrue(
+            wait_for(
+                lambda: state.last() is not None and abs(state.last().process_value - 0.4) < 0.05,
+                30,
+            ),
+            'joint1 did not follow its command after the respawn',
+        )
         client = Client('/arm1/joint1_position_controller/pid', timeout=30)
         p = client.get_configuration(10)['p']
         self.assertEqual(client.update_configuration({'p': p * 2})['p'], p * 2)
@@ -303,8 +348,12 @@ class FaultsLifecycle(unittest.TestCase):
         port = free_port()
         env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
         env.pop('ROS_NAMESPACE', None)
-        start = lambda *cmd: subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE,
-                                              stderr=subprocess.STDOUT, text=True)
+
+        def start(*cmd):
+            return subprocess.Popen(
+                cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
+            )
+
         procs = []
         try:
             master = start('rosmaster', '--core', '-p', str(port))
@@ -318,16 +367,19 @@ class FaultsLifecycle(unittest.TestCase):
             printer = start(sys.executable, '-c', CLOCK_PRINTER)
             procs.append(printer)
             before = LineReader(printer)
-            self.assertTrue(wait_for(lambda: len(before.clocks()) >= 3, 60),
-                            'no /clock from the private world')
+            self.assertTrue(
+                wait_for(lambda: len(before.clocks()) >= 3, 60), 'no /clock from the private world'
+            )
 
             master.kill()
             master.wait(10)
             seen = len(before.clocks())
             time.sleep(3.0)
             clocks = before.clocks()[seen:]
-            self.assertTrue(clocks and clocks[-1] - clocks[0] >= 1.5,
-                            'the world stopped with its master: %s' % clocks)
+            self.assertTrue(
+                clocks and clocks[-1] - clocks[0] >= 1.5,
+                'the world stopped with its master: %s' % clocks,
+            )
             self.assertIsNone(world.poll(), 'the world died with its master')
 
             master = start('rosmaster', '--core', '-p', str(port))
@@ -335,14 +387,18 @@ class FaultsLifecycle(unittest.TestCase):
             self.assertTrue(wait_for(remote.is_online, 20))
             # The world's own watch registers it again within a few seconds: new nodes find
             # /clock and the /gazebo services.
-            self.assertTrue(wait_for(lambda: self.published(remote, '/clock'), 15),
-                            'the world did not register again:\n%s' % '\n'.join(world_log.lines))
+            self.assertTrue(
+                wait_for(lambda: self.published(remote, '/clock'), 15),
+                'the world did not register again:\n%s' % '\n'.join(world_log.lines),
+            )
             remote.lookupService('/gazebo/spawn_urdf_model')
             printer = start(sys.executable, '-c', CLOCK_PRINTER)
             procs.append(printer)
             after = LineReader(printer)
-            self.assertTrue(wait_for(lambda: len(after.clocks()) >= 3, 30),
-                            'a new subscriber gets no /clock after the master restarted')
+            self.assertTrue(
+                wait_for(lambda: len(after.clocks()) >= 3, 30),
+                'a new subscriber gets no /clock after the master restarted',
+            )
 
             world.send_signal(signal.SIGINT)
             world.wait(30)

@@ -1,6 +1,7 @@
 #!/usr/bin/env python
 """The seed's goal through robot_spawn.launch: the camera publishes, `rosservice call
 /arm_mover/safe_move` moves the arm and returns, and look_away turns it away from a blank view."""
+
 import os
 import struct
 import subprocess
@@ -17,8 +18,13 @@ from rostest_util import WorldTestCase, sim_wait, wait_for  # noqa: E402
 
 def rosservice_call(*pose):
     req = '{joint1: %g, joint2: %g, joint3: %g, joint4: %g}' % pose
-    return subprocess.run(['rosservice', 'call', '/arm_mover/safe_move', req], timeout=60,
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    return subprocess.run(
+        ['rosservice', 'call', '/arm_mover/safe_move', req],
+        timeout=60,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
 
 
 class Goal(WorldTestCase):
@@ -40,8 +46,13 @@ class Goal(WorldTestCase):
             images.close()
         # and a user can look at it on a headless machine
         path = os.path.join(tempfile.mkdtemp(prefix='arm1-goal-'), 'view.png')
-        out = subprocess.run(['rosrun', 'arm1', 'camera_snapshot', path], timeout=60,
-                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        out = subprocess.run(
+            ['rosrun', 'arm1', 'camera_snapshot', path],
+            timeout=60,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         self.assertEqual(out.returncode, 0, out.stdout)
         with open(path, 'rb') as f:
             head = f.read(24)
@@ -63,8 +74,10 @@ class Goal(WorldTestCase):
         self.assertEqual(out.returncode, 0, out.stdout)
         at = self.arm.wait_at(LOOK, 0.05, 30)
         self.assertIsNotNone(at, 'look_away did not turn the arm to %s' % (LOOK,))
-        self.assertTrue(any(m.name == '/look_away' and 'safe_move' in m.msg
-                            for m in self.rosout.since(start)), 'look_away said nothing')
+        self.assertTrue(
+            any(m.name == '/look_away' and 'safe_move' in m.msg for m in self.rosout.since(start)),
+            'look_away said nothing',
+        )
         images = ImageRecorder()
         try:
             view = images.frame_after(at)

@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """gui:=true for real: under Xvfb, start the world with pybullet's window and look at the screen."""
+
 import os
 import sys
 import unittest

@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """look_away alone, against stand-ins of arm_mover, the camera and joint_states: when it moves."""
+
 import threading
 import time
 import unittest
@@ -18,7 +19,7 @@ W, H = 64, 48
 def image(uniform):
     px = np.full((H, W, 3), 255, np.uint8)
     if not uniform:
-        px[H // 2:] = (191, 191, 191)  # ground below the horizon
+        px[H // 2 :] = (191, 191, 191)  # ground below the horizon
     msg = Image(height=H, width=W, encoding='rgb8', step=W * 3, data=px.tobytes())
     msg.header.stamp = rospy.Time.now()
     return msg

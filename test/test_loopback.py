@@ -4,9 +4,9 @@
 ROS 1 has no authentication, so a port reachable from the network lets anyone move the arm.
 tools/ws-run (every make target) sets ROS_HOSTNAME=localhost; run by hand, export it too.
 """
+
 import os
 import sys
-import time
 import unittest
 from urllib.parse import urlparse
 
@@ -41,15 +41,21 @@ class Loopback(unittest.TestCase):
         addrs = listening_addresses(pid)
         self.assertTrue(addrs, '%s (pid %d) listens on no TCP port at all' % (who, pid))
         outside = [a for a in addrs if a[0] != LOOPBACK]
-        self.assertEqual(outside, [], '%s (pid %d) listens beyond loopback: %s' % (
-            who, pid, ', '.join('%s:%d' % a for a in outside)))
+        self.assertEqual(
+            outside,
+            [],
+            '%s (pid %d) listens beyond loopback: %s'
+            % (who, pid, ', '.join('%s:%d' % a for a in outside)),
+        )
 
     def test_master_listens_on_loopback_only(self):
         self.assert_loopback_only(self.master.getPid(), 'the ROS master')
 
     def test_world_listens_on_loopback_only(self):
-        self.assertTrue(wait_for(lambda: '/gazebo' in graph_nodes(self.master), 30),
-                        'the world node /gazebo never registered')
+        self.assertTrue(
+            wait_for(lambda: '/gazebo' in graph_nodes(self.master), 30),
+            'the world node /gazebo never registered',
+        )
         self.assert_loopback_only(node_pid('/gazebo', caller='/test_loopback'), 'the world /gazebo')
 
     def test_every_rospy_node_listens_on_loopback_only(self):

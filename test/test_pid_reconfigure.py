@@ -9,6 +9,7 @@
   reaches the controller at its next update, shows in the state topic and on the
   parameter server, and the arm keeps moving.
 """
+
 import os
 import subprocess
 import sys
@@ -61,8 +62,9 @@ class Reconfigure(WorldTestCase):
         msgs = self.recent_states(start, 50)
         stamps = [m.header.stamp.to_sec() for m in msgs]
         gaps = [b - a for a, b in zip(stamps, stamps[1:])]
-        self.assertAlmostEqual(sorted(gaps)[len(gaps) // 2], 0.01, delta=1e-6,
-                               msg='state every 10th update of 1 ms')
+        self.assertAlmostEqual(
+            sorted(gaps)[len(gaps) // 2], 0.01, delta=1e-6, msg='state every 10th update of 1 ms'
+        )
         pid = rospy.get_param(NS + '/pid')
         joint_states = self.joints.since(start - 1.0)
         for m in msgs:
@@ -101,13 +103,19 @@ class Reconfigure(WorldTestCase):
         self.assertEqual(rospy.get_param(NS + '/pid/d'), 0.0)
         # the arm keeps moving under the new gains, no restart
         self.cmd.publish(-0.3)
-        self.assertTrue(wait_for(lambda: abs(positions(self.joints.last())['joint1'] + 0.3) < 0.05,
-                                 30), 'joint1 did not follow after the gain change')
+        self.assertTrue(
+            wait_for(lambda: abs(positions(self.joints.last())['joint1'] + 0.3) < 0.05, 30),
+            'joint1 did not follow after the gain change',
+        )
 
     def test_03_dynparam_set_from_the_command_line(self):
-        out = subprocess.run(['rosrun', 'dynamic_reconfigure', 'dynparam', 'set', NS + '/pid',
-                              'p', '3.0'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                             text=True, timeout=60)
+        out = subprocess.run(
+            ['rosrun', 'dynamic_reconfigure', 'dynparam', 'set', NS + '/pid', 'p', '3.0'],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            timeout=60,
+        )
         self.assertEqual(out.returncode, 0, out.stdout)
         start = time.monotonic()
         self.assertTrue(wait_for(lambda: any(m.p == 3.0 for m in self.states.since(start)), 30))
@@ -120,8 +128,10 @@ class Reconfigure(WorldTestCase):
 
     def test_04_a_change_applies_at_the_next_update_exactly(self):
         """In-process: a controller with the ROS node handle and a real server."""
-        rospy.set_param('/reconf_test/c', {'type': JointPositionController.type_name,
-                                           'joint': 'j', 'pid': {'p': 1.0, 'd': 0.0}})
+        rospy.set_param(
+            '/reconf_test/c',
+            {'type': JointPositionController.type_name, 'joint': 'j', 'pid': {'p': 1.0, 'd': 0.0}},
+        )
         hw = OneJointHw()
         c = JointPositionController()
         c.name = 'c'

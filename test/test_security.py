@@ -9,6 +9,7 @@ name a file that is no mesh (and that the file's contents appear neither in the 
 on /rosout), a 6000x6000 camera at 30 Hz, and a flood of 200 spawns from 8 threads. The
 last case checks that /clock kept real time over the whole test.
 """
+
 import os
 import shutil
 import sys
@@ -29,22 +30,29 @@ MODELS_LIMIT = 40  # test/config/security.world
 MIN_RTF = 0.95
 PASSWD_WORDS = ('root:x:0:0', '/bin/bash', '/usr/sbin/nologin')
 
-BOX = ('<robot name="{name}"><link name="body">'
-       '<inertial><mass value="0.1"/>'
-       '<inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>'
-       '<visual><geometry>{geometry}</geometry></visual>'
-       '<collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision>'
-       '</link>{extra}</robot>')
+BOX = (
+    '<robot name="{name}"><link name="body">'
+    '<inertial><mass value="0.1"/>'
+    '<inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>'
+    '<visual><geometry>{geometry}</geometry></visual>'
+    '<collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision>'
+    '</link>{extra}</robot>'
+)
 
 
 def box(name='box', geometry='<box size="0.05 0.05 0.05"/>', extra=''):
     return BOX.format(name=name, geometry=geometry, extra=extra)
 
 
-LAUGHS = ('<?xml version="1.0"?><!DOCTYPE robot [<!ENTITY lol "lol">'
-          + ''.join('<!ENTITY lol%d "%s">' % (i, ('&lol%s;' % (i - 1 if i > 1 else '')) * 10)
-                    for i in range(1, 10))
-          + ']>' + box('&lol9;'))
+LAUGHS = (
+    '<?xml version="1.0"?><!DOCTYPE robot [<!ENTITY lol "lol">'
+    + ''.join(
+        '<!ENTITY lol%d "%s">' % (i, ('&lol%s;' % (i - 1 if i > 1 else '')) * 10)
+        for i in range(1, 10)
+    )
+    + ']>'
+    + box('&lol9;')
+)
 
 CAMERA = '''<gazebo reference="body"><sensor type="camera" name="huge_camera">
   <update_rate>30.0</update_rate>
@@ -92,18 +100,34 @@ class Security(WorldTestCase):
     def written(self, marker, *places):
         """Files named with ``marker`` wherever the world might have joined a name onto a folder."""
         cwd = self.world_cwd
-        places = set(places) | {'/', '/tmp', tempfile.gettempdir(), cwd, os.path.dirname(cwd),
-                                os.path.dirname(os.path.dirname(cwd))}
-        return [os.path.join(p, f) for p in places if os.path.isdir(p)
-                for f in os.listdir(p) if marker in f]
+        places = set(places) | {
+            '/',
+            '/tmp',
+            tempfile.gettempdir(),
+            cwd,
+            os.path.dirname(cwd),
+            os.path.dirname(os.path.dirname(cwd)),
+        }
+        return [
+            os.path.join(p, f)
+            for p in places
+            if os.path.isdir(p)
+            for f in os.listdir(p)
+            if marker in f
+        ]
 
     # -- names ---------------------------------------------------------------------
     def test_01_path_like_model_names_are_refused_and_write_nothing(self):
         marker = 'sec_' + uuid.uuid4().hex[:12]
         outside = tempfile.mkdtemp(prefix='arm1-security-')
         try:
-            for name in (os.path.join(outside, marker), '../../' + marker, '..', marker + '/x',
-                         'a\\..\\' + marker):
+            for name in (
+                os.path.join(outside, marker),
+                '../../' + marker,
+                '..',
+                marker + '/x',
+                'a\\..\\' + marker,
+            ):
                 rule = 'is not a name' if name == '..' else 'a name is not a path'
                 self.refused(name, box(), 'model name', rule)
             self.assertEqual(self.written(marker, outside), [])
@@ -123,8 +147,9 @@ class Security(WorldTestCase):
 
     def test_04_external_entity_is_refused_without_reading_it(self):
         mark = time.monotonic()
-        xml = ('<!DOCTYPE robot [<!ENTITY passwd SYSTEM "file:///etc/passwd">]>'
-               + box('r', extra='<gazebo><comment>&passwd;</comment></gazebo>'))
+        xml = '<!DOCTYPE robot [<!ENTITY passwd SYSTEM "file:///etc/passwd">]>' + box(
+            'r', extra='<gazebo><comment>&passwd;</comment></gazebo>'
+        )
         msg = self.refused('external', xml, 'document type declaration', within=2.0)
         for w in PASSWD_WORDS:
             self.assertNotIn(w, msg + self.logged_since(mark))
@@ -133,11 +158,12 @@ class Security(WorldTestCase):
     def test_05_package_uri_that_climbs_out_is_refused_without_the_files_contents(self):
         mark = time.monotonic()
         for uri, words in (
-                ('package://arm1/../../../../etc/passwd', ["leaves package 'arm1'"]),
-                ('package://arm1/../../../../etc/passwd.stl', ["leaves package 'arm1'"]),
-                ('package://arm1//etc/passwd', ["leaves package 'arm1'"]),
-                ('file:///etc/passwd', ['only .stl, .obj, .dae meshes']),
-                ('/etc/passwd', ['only .stl, .obj, .dae meshes'])):
+            ('package://arm1/../../../../etc/passwd', ["leaves package 'arm1'"]),
+            ('package://arm1/../../../../etc/passwd.stl', ["leaves package 'arm1'"]),
+            ('package://arm1//etc/passwd', ["leaves package 'arm1'"]),
+            ('file:///etc/passwd', ['only .stl, .obj, .dae meshes']),
+            ('/etc/passwd', ['only .stl, .obj, .dae meshes']),
+        ):
             geometry = '<mesh filename="%s"/>' % uri
             msg = self.refused('climber', box(geometry=geometry), "link 'body'", uri, *words)
         time.sleep(0.5)  # let /rosout catch up
@@ -147,8 +173,7 @@ class Security(WorldTestCase):
     # -- sensors -------------------------------------------------------------------
     def test_06_oversized_camera_is_refused_naming_camera_pixels(self):
         name = 'big_eye_' + uuid.uuid4().hex[:12]
-        self.refused(name, box(name, extra=CAMERA), '36000000', '~limits/camera_pixels',
-                     within=5.0)
+        self.refused(name, box(name, extra=CAMERA), '36000000', '~limits/camera_pixels', within=5.0)
         self.assertFalse(self.delete_srv(name).success)  # nothing was left behind
         self.assertEqual(self.written(name), [])
 
@@ -187,9 +212,14 @@ class Security(WorldTestCase):
         self.assertEqual(len(spawned), MODELS_LIMIT)  # the world file's limit, exactly
         over = [m for kind, ok, m in replies.values() if kind == 'valid' and not ok]
         self.assertEqual(len(over), 100 - MODELS_LIMIT)
-        self.assertTrue(all('models is %d, over the limit of %d' % (MODELS_LIMIT + 1,
-                                                                   MODELS_LIMIT) in m
-                            and '~limits/models' in m for m in over), over[:3])
+        self.assertTrue(
+            all(
+                'models is %d, over the limit of %d' % (MODELS_LIMIT + 1, MODELS_LIMIT) in m
+                and '~limits/models' in m
+                for m in over
+            ),
+            over[:3],
+        )
         for kind, ok, m in replies.values():
             if kind == 'path':
                 self.assertIn('not a path', m)
@@ -215,8 +245,12 @@ class Security(WorldTestCase):
         self.assertGreater(wall, 5.0)
         rtf = (c1.clock - c0.clock).to_sec() / wall
         gaps = max(b[0] - a[0] for a, b in zip(msgs, msgs[1:]))
-        rospy.loginfo('security: RTF %.3f over %.1f s of wall time, longest /clock gap %.2f s',
-                      rtf, wall, gaps)
+        rospy.loginfo(
+            'security: RTF %.3f over %.1f s of wall time, longest /clock gap %.2f s',
+            rtf,
+            wall,
+            gaps,
+        )
         self.assertGreaterEqual(rtf, MIN_RTF, 'RTF %.3f over %.1f s' % (rtf, wall))
         self.assertLess(gaps, 1.0, 'the world stopped for %.2f s' % gaps)
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """simple_mover's sine (amplitude pi/2, 0.1 Hz) moves every joint through its clamped range."""
+
 import math
 import os
 import sys
@@ -13,8 +14,12 @@ from std_msgs.msg import Float64
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import JOINTS, Recorder, joint_recorder, positions, wait_for  # noqa: E402
 
-LIMITS = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
-          'joint4': (-0.8, 1.57)}
+LIMITS = {
+    'joint1': (-1.57, 1.57),
+    'joint2': (0.01, 1.57),
+    'joint3': (-1.0, 1.57),
+    'joint4': (-0.8, 1.57),
+}
 
 
 class SimpleMover(unittest.TestCase):
@@ -38,8 +43,11 @@ class SimpleMover(unittest.TestCase):
             self.assertLessEqual(max(pos), hi + 0.05, j)
             # ... and up to the upper limit, which the sine (peak pi/2) exceeds for every joint.
             self.assertGreater(max(pos), hi - 0.05, '%s peaked at %.3f' % (j, max(pos)))
-            self.assertGreater(max(pos) - min(pos), 0.6 * (hi - lo),
-                               '%s swept only [%.3f, %.3f]' % (j, min(pos), max(pos)))
+            self.assertGreater(
+                max(pos) - min(pos),
+                0.6 * (hi - lo),
+                '%s swept only [%.3f, %.3f]' % (j, min(pos), max(pos)),
+            )
             self.assertTrue(all(math.isfinite(p) for p in pos))
 
 

@@ -5,6 +5,7 @@ A rospy.Rate(10) in sim time ticks 10 times per simulated second, joint_states k
 50 Hz in sim time, and /gazebo/real_time_factor reports the measured speed, which
 must lie in [~min_rtf, ~max_rtf].
 """
+
 import os
 import sys
 import time
@@ -35,15 +36,19 @@ class Speed(unittest.TestCase):
             ticks += 1
         elapsed = (rospy.Time.now() - start).to_sec()
         wall = time.monotonic() - wall
-        self.assertAlmostEqual(ticks / elapsed, 10.0, delta=0.1,
-                               msg='%d ticks in %.3f sim s' % (ticks, elapsed))
+        self.assertAlmostEqual(
+            ticks / elapsed, 10.0, delta=0.1, msg='%d ticks in %.3f sim s' % (ticks, elapsed)
+        )
         msgs = [m for m in states.since(0) if m.header.stamp >= start]
         span = (msgs[-1].header.stamp - msgs[0].header.stamp).to_sec()
         self.assertAlmostEqual((len(msgs) - 1) / span, 50.0, delta=0.5)
         lo, hi = rospy.get_param('~min_rtf'), rospy.get_param('~max_rtf')
         measured = rtf.last().data
-        self.assertTrue(lo <= measured <= hi, 'real-time factor %.3f not in [%g, %g] '
-                        '(%.1f sim s took %.1f wall s)' % (measured, lo, hi, elapsed, wall))
+        self.assertTrue(
+            lo <= measured <= hi,
+            'real-time factor %.3f not in [%g, %g] '
+            '(%.1f sim s took %.1f wall s)' % (measured, lo, hi, elapsed, wall),
+        )
 
 
 if __name__ == '__main__':

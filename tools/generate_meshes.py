@@ -41,6 +41,7 @@ JOINT4_XY = (-0.045747, -0.0082282)
 # --------------------------------------------------------------------------
 # transforms
 
+
 def translation(x, y, z):
     t = np.eye(4)
     t[:3, 3] = (x, y, z)
@@ -60,11 +61,13 @@ def rpy(roll, pitch, yaw):
     cp, sp = math.cos(pitch), math.sin(pitch)
     cy, sy = math.cos(yaw), math.sin(yaw)
     t = np.eye(4)
-    t[:3, :3] = np.array([
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-    ])
+    t[:3, :3] = np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
     return t
 
 
@@ -85,6 +88,7 @@ def apply_2d(transform, points):
 
 # --------------------------------------------------------------------------
 # 2-D outlines (counter-clockwise)
+
 
 def circle(cx, cy, r, n=24):
     """Regular n-gon; with n a multiple of 4 its vertices reach cx +- r, cy +- r."""
@@ -119,6 +123,7 @@ def convex_hull(*point_sets):
 # --------------------------------------------------------------------------
 # 3-D parts: closed prisms
 
+
 def prism(outline, z0, z1, transform=None):
     """Extrude a convex counter-clockwise outline from z0 to z1 (z0 < z1):
     a closed shell of 4n - 4 outward-facing triangles."""
@@ -128,11 +133,11 @@ def prism(outline, z0, z1, transform=None):
     top = np.column_stack([outline, np.full(n, z1)])
     tris = []
     for i in range(1, n - 1):
-        tris.append((bottom[0], bottom[i + 1], bottom[i]))   # normal -z
-        tris.append((top[0], top[i], top[i + 1]))            # normal +z
+        tris.append((bottom[0], bottom[i + 1], bottom[i]))  # normal -z
+        tris.append((top[0], top[i], top[i + 1]))  # normal +z
     for i in range(n):
         j = (i + 1) % n
-        tris.append((bottom[i], bottom[j], top[j]))          # outward side
+        tris.append((bottom[i], bottom[j], top[j]))  # outward side
         tris.append((bottom[i], top[j], top[i]))
     tris = np.array(tris, dtype=float)
     return tris if transform is None else apply(transform, tris)
@@ -149,7 +154,7 @@ def cylinder(cx, cy, r, z0, z1, n=24, transform=None):
 # --------------------------------------------------------------------------
 # an SG90-style micro servo
 
-SERVO_LENGTH = 0.0222      # body length (tabs excluded)
+SERVO_LENGTH = 0.0222  # body length (tabs excluded)
 SERVO_HALF_WIDTH = 0.0059  # body is 11.8 mm wide
 SERVO_BODY_Z = (-0.0305, -0.0075)
 
@@ -166,10 +171,10 @@ def servo(far, transform, tabs=False):
     near = SERVO_LENGTH - far
     w = SERVO_HALF_WIDTH
     parts = [
-        cylinder(0.0, 0.0, 0.0024, -0.0045, 0.0, n=16),          # spline
-        cylinder(0.0, 0.0, 0.0058, -0.0080, -0.0032, n=24),      # gear top
+        cylinder(0.0, 0.0, 0.0024, -0.0045, 0.0, n=16),  # spline
+        cylinder(0.0, 0.0, 0.0058, -0.0080, -0.0032, n=24),  # gear top
         cylinder(-0.0075, 0.0, 0.0030, -0.0079, -0.0041, n=16),  # second gear boss
-        box(-far, near, -w, w, *SERVO_BODY_Z),                   # body
+        box(-far, near, -w, w, *SERVO_BODY_Z),  # body
     ]
     if tabs:
         parts.append(box(-far - 0.0047, near + 0.0047, -w, w, -0.0120, -0.0095))
@@ -179,27 +184,30 @@ def servo(far, transform, tabs=False):
 # --------------------------------------------------------------------------
 # the links
 
+
 def base_link():
-    shaft = (0.0062, -0.0001)             # joint1 axis
+    shaft = (0.0062, -0.0001)  # joint1 axis
     far = 0.0163
-    parts = [cylinder(0.0, 0.0, 0.0275, 0.0, 0.0030, n=32)]                # base disc
+    parts = [cylinder(0.0, 0.0, 0.0275, 0.0, 0.0030, n=32)]  # base disc
     parts += servo(far, translation(shaft[0], shaft[1], 0.0358), tabs=True)
     x0, x1 = shaft[0] - far, shaft[0] + SERVO_LENGTH - far
-    parts.append(box(x0 - 0.0010, x1 + 0.0010, shaft[1] - 0.0069, shaft[1] + 0.0069,
-                     0.0025, 0.0060))                                       # cradle
-    for px in (x0 - 0.0045, x1 + 0.0007):                                   # tab posts
-        parts.append(box(px, px + 0.0038, shaft[1] - 0.0061, shaft[1] + 0.0057,
-                         0.0025, 0.0240))
+    parts.append(
+        box(x0 - 0.0010, x1 + 0.0010, shaft[1] - 0.0069, shaft[1] + 0.0069, 0.0025, 0.0060)
+    )  # cradle
+    for px in (x0 - 0.0045, x1 + 0.0007):  # tab posts
+        parts.append(box(px, px + 0.0038, shaft[1] - 0.0061, shaft[1] + 0.0057, 0.0025, 0.0240))
     return parts
 
 
 def link1():
     parts = [
-        cylinder(0.0, 0.0, 0.0040, -0.0038, -0.0003, n=20),                 # horn hub
-        prism(convex_hull(circle(-0.0078, -0.0078, 0.0030, 16),
-                          circle(0.0078, 0.0078, 0.0030, 16)),
-              -0.0028, -0.0004),                                            # horn arm
-        cylinder(-0.00025, 0.00045, 0.0204, -0.0005, 0.0015, n=32),         # turntable
+        cylinder(0.0, 0.0, 0.0040, -0.0038, -0.0003, n=20),  # horn hub
+        prism(
+            convex_hull(circle(-0.0078, -0.0078, 0.0030, 16), circle(0.0078, 0.0078, 0.0030, 16)),
+            -0.0028,
+            -0.0004,
+        ),  # horn arm
+        cylinder(-0.00025, 0.00045, 0.0204, -0.0005, 0.0015, n=32),  # turntable
     ]
     joint2 = origin(JOINT2_XYZ, JOINT2_RPY)
     # servo 2 lies on its side, spline on the joint2 axis, body down to the turntable
@@ -215,49 +223,67 @@ def bracket_link(next_xy, servo_angle, servo_far, plate_r, z_plate_a, z_plate_b,
     servo) carrying the next servo, whose spline is at next_xy."""
     servo_frame = translation(next_xy[0], next_xy[1], 0.0008) @ rot_z(servo_angle)
     footprint = servo_footprint(servo_far, servo_frame)
-    u = np.array(next_xy) / np.hypot(*next_xy)         # along the link
-    web = convex_hull(np.array(web_xy) + np.outer((-1, 1, 1, -1), (-u[1], u[0])) * 0.0050
-                      + np.outer((-1, -1, 1, 1), u) * 0.0012)
+    u = np.array(next_xy) / np.hypot(*next_xy)  # along the link
+    web = convex_hull(
+        np.array(web_xy)
+        + np.outer((-1, 1, 1, -1), (-u[1], u[0])) * 0.0050
+        + np.outer((-1, -1, 1, 1), u) * 0.0012
+    )
     inner = footprint + (np.mean(footprint, axis=0) - footprint) * 0.06  # 6 % smaller
     servo_bottom = servo_frame[2, 3] + SERVO_BODY_Z[0]
     parts = [
-        prism(convex_hull(circle(0.0, 0.0, plate_r, 32),
-                          circle(web_xy[0], web_xy[1], 0.0060, 24)), *z_plate_a),   # plate A
-        prism(convex_hull(circle(0.0, 0.0, plate_r, 32), footprint), *z_plate_b),   # plate B
-        prism(web, z_plate_b[0] + 0.0017, z_plate_a[0] + 0.0003),                  # web
-        cylinder(0.0, 0.0, 0.0040, -0.0016, z_plate_a[0] + 0.0005, n=20),          # horn
-        cylinder(0.0, 0.0, 0.0035, z_plate_b[1] - 0.0005, -0.0300, n=20),          # pivot
-        prism(convex_hull(inner), z_plate_b[1] - 0.0003, servo_bottom + 0.0002),   # spacer
+        prism(
+            convex_hull(circle(0.0, 0.0, plate_r, 32), circle(web_xy[0], web_xy[1], 0.0060, 24)),
+            *z_plate_a,
+        ),  # plate A
+        prism(convex_hull(circle(0.0, 0.0, plate_r, 32), footprint), *z_plate_b),  # plate B
+        prism(web, z_plate_b[0] + 0.0017, z_plate_a[0] + 0.0003),  # web
+        cylinder(0.0, 0.0, 0.0040, -0.0016, z_plate_a[0] + 0.0005, n=20),  # horn
+        cylinder(0.0, 0.0, 0.0035, z_plate_b[1] - 0.0005, -0.0300, n=20),  # pivot
+        prism(convex_hull(inner), z_plate_b[1] - 0.0003, servo_bottom + 0.0002),  # spacer
     ]
     parts += servo(servo_far, servo_frame)
     return parts
 
 
 def link2():
-    return bracket_link(JOINT3_XY, -math.radians(37.0), 0.0162, 0.0085,
-                        (-0.0009, 0.0011), (-0.0347, -0.0327), (-0.0220, 0.0088))
+    return bracket_link(
+        JOINT3_XY,
+        -math.radians(37.0),
+        0.0162,
+        0.0085,
+        (-0.0009, 0.0011),
+        (-0.0347, -0.0327),
+        (-0.0220, 0.0088),
+    )
 
 
 def link3():
-    return bracket_link(JOINT4_XY, math.radians(27.3), 0.0138, 0.0080,
-                        (-0.0010, 0.0010), (-0.0348, -0.0328), (-0.0230, -0.0041))
+    return bracket_link(
+        JOINT4_XY,
+        math.radians(27.3),
+        0.0138,
+        0.0080,
+        (-0.0010, 0.0010),
+        (-0.0348, -0.0328),
+        (-0.0230, -0.0041),
+    )
 
 
 def link4():
     tip = (-0.0371, -0.0307)
     plate = convex_hull(circle(0.0, 0.0, 0.0080, 32), circle(-0.0330, -0.0275, 0.0060, 24))
     return [
-        prism(plate, -0.0010, 0.0010),                                      # plate A
-        prism(plate, -0.0348, -0.0328),                                     # plate B
-        cylinder(tip[0], tip[1], 0.0060, -0.0345, 0.0007, n=32),            # end post
-        cylinder(0.0, 0.0, 0.0040, -0.0016, -0.0005, n=20),                 # horn
-        cylinder(0.0, 0.0, 0.0030, 0.0005, 0.0032, n=20),                   # horn screw boss
-        cylinder(0.0, 0.0, 0.0035, -0.0333, -0.0300, n=20),                 # pivot
+        prism(plate, -0.0010, 0.0010),  # plate A
+        prism(plate, -0.0348, -0.0328),  # plate B
+        cylinder(tip[0], tip[1], 0.0060, -0.0345, 0.0007, n=32),  # end post
+        cylinder(0.0, 0.0, 0.0040, -0.0016, -0.0005, n=20),  # horn
+        cylinder(0.0, 0.0, 0.0030, 0.0005, 0.0032, n=20),  # horn screw boss
+        cylinder(0.0, 0.0, 0.0035, -0.0333, -0.0300, n=20),  # pivot
     ]
 
 
-BUILDERS = {'base_link': base_link, 'link1': link1, 'link2': link2,
-            'link3': link3, 'link4': link4}
+BUILDERS = {'base_link': base_link, 'link1': link1, 'link2': link2, 'link3': link3, 'link4': link4}
 
 
 def build(link):
@@ -278,8 +304,10 @@ def main(argv=None):
         path = os.path.join(out_dir, link + '.STL')
         write_binary_stl(path, tris, HEADER)
         lo, hi = tris.reshape(-1, 3).min(axis=0), tris.reshape(-1, 3).max(axis=0)
-        print('%-10s %4d triangles  min %s  max %s' % (
-            link, len(tris), np.array2string(lo, precision=4), np.array2string(hi, precision=4)))
+        print(
+            '%-10s %4d triangles  min %s  max %s'
+            % (link, len(tris), np.array2string(lo, precision=4), np.array2string(hi, precision=4))
+        )
     return 0
 
 

@@ -15,6 +15,7 @@ tree would make catkin see nested packages.
 
     tools/make_compat_packages.py DEST_SRC_DIR     (make setup: DEST = .ws/src)
 """
+
 import os
 import stat
 import sys
@@ -52,34 +53,49 @@ EMPTY_WORLD = '''<launch>
   <include file="$(find arm1)/launch/empty_world.launch" pass_all_args="true"/>
 </launch>
 '''
-EMPTY_WORLD_ARGS = [('paused', 'false'), ('use_sim_time', 'true'), ('gui', 'true'),
-                    ('headless', 'false'), ('debug', 'false'), ('verbose', 'false'),
-                    ('physics', 'ode'), ('world_name', ''), ('respawn_gazebo', 'false'),
-                    ('output', 'screen'), ('pub_clock_frequency', '100'),
-                    ('real_time_factor', ''), ('real_time_update_rate', ''), ('lockstep', 'false')]
+EMPTY_WORLD_ARGS = [
+    ('paused', 'false'),
+    ('use_sim_time', 'true'),
+    ('gui', 'true'),
+    ('headless', 'false'),
+    ('debug', 'false'),
+    ('verbose', 'false'),
+    ('physics', 'ode'),
+    ('world_name', ''),
+    ('respawn_gazebo', 'false'),
+    ('output', 'screen'),
+    ('pub_clock_frequency', '100'),
+    ('real_time_factor', ''),
+    ('real_time_update_rate', ''),
+    ('lockstep', 'false'),
+]
 
 PACKAGES = {
-    'gazebo_ros': ('Stand-in for gazebo_ros: empty_world.launch, spawn_model and gzserver on '
-                   "arm1's pybullet world.", {
-                       'spawn_model': 'arm1.ros.spawn_model',
-                       'gzserver': 'arm1.ros.world_node'}),
-    'controller_manager': ("Stand-in for controller_manager's spawner, backed by arm1's "
-                           'controller managers.', {'spawner': 'arm1.ros.spawner'}),
-    'xacro': ('Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '
-              'package path.', {'xacro': 'arm1.ros.xacro_bridge'}),
+    'gazebo_ros': (
+        'Stand-in for gazebo_ros: empty_world.launch, spawn_model and gzserver on '
+        "arm1's pybullet world.",
+        {'spawn_model': 'arm1.ros.spawn_model', 'gzserver': 'arm1.ros.world_node'},
+    ),
+    'controller_manager': (
+        "Stand-in for controller_manager's spawner, backed by arm1's controller managers.",
+        {'spawner': 'arm1.ros.spawner'},
+    ),
+    'xacro': (
+        'Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '
+        'package path.',
+        {'xacro': 'arm1.ros.xacro_bridge'},
+    ),
 }
 
 
 # package -> (upstream version whose definitions these are, message packages they use)
 MSG_PACKAGES = {
     'gazebo_msgs': ('2.9.2', ['std_msgs', 'geometry_msgs', 'trajectory_msgs']),
-    'control_msgs': ('1.5.2', ['std_msgs', 'geometry_msgs', 'trajectory_msgs',
-                               'actionlib_msgs']),
+    'control_msgs': ('1.5.2', ['std_msgs', 'geometry_msgs', 'trajectory_msgs', 'actionlib_msgs']),
     'controller_manager_msgs': ('0.20.0', ['std_msgs']),
 }
 DEFINITIONS = os.path.join(ARM1, 'tools', 'compat_msgs')
-KINDS = (('msg', 'add_message_files'), ('srv', 'add_service_files'),
-         ('action', 'add_action_files'))
+KINDS = (('msg', 'add_message_files'), ('srv', 'add_service_files'), ('action', 'add_action_files'))
 
 MSG_PACKAGE_XML = '''<?xml version="1.0"?>
 <package format="2">
@@ -127,7 +143,7 @@ def make_msg_package(dest: str, name: str, version: str, deps: list[str]) -> Non
         src_dir = os.path.join(DEFINITIONS, name, kind)
         files = sorted(os.listdir(src_dir)) if os.path.isdir(src_dir) else []
         dst_dir = os.path.join(root, kind)
-        for stale in (os.listdir(dst_dir) if os.path.isdir(dst_dir) else []):
+        for stale in os.listdir(dst_dir) if os.path.isdir(dst_dir) else []:
             if stale not in files:  # a definition removed here goes there too
                 os.remove(os.path.join(dst_dir, stale))
         for fname in files:
@@ -136,10 +152,14 @@ def make_msg_package(dest: str, name: str, version: str, deps: list[str]) -> Non
         if files:
             adds.append('%s(DIRECTORY %s FILES\n  %s)' % (macro, kind, '\n  '.join(files)))
     depends = '\n'.join('  <depend>%s</depend>' % d for d in deps)
-    write(os.path.join(root, 'package.xml'),
-          MSG_PACKAGE_XML.format(name=name, version=version, depends=depends))
-    write(os.path.join(root, 'CMakeLists.txt'),
-          MSG_CMAKELISTS.format(name=name, deps=' '.join(deps), adds='\n'.join(adds)))
+    write(
+        os.path.join(root, 'package.xml'),
+        MSG_PACKAGE_XML.format(name=name, version=version, depends=depends),
+    )
+    write(
+        os.path.join(root, 'CMakeLists.txt'),
+        MSG_CMAKELISTS.format(name=name, deps=' '.join(deps), adds='\n'.join(adds)),
+    )
 
 
 def make(dest: str) -> None:
@@ -147,18 +167,28 @@ def make(dest: str) -> None:
         make_msg_package(dest, name, version, deps)
     for name, (description, executables) in PACKAGES.items():
         root = os.path.join(dest, name)
-        write(os.path.join(root, 'package.xml'), PACKAGE_XML.format(name=name,
-                                                                    description=description))
+        write(
+            os.path.join(root, 'package.xml'),
+            PACKAGE_XML.format(name=name, description=description),
+        )
         write(os.path.join(root, 'CMakeLists.txt'), CMAKELISTS.format(name=name))
         for exe, module in executables.items():
             # $(find xacro)/xacro: ROS 1 xacro kept its script at the package's top.
-            path = os.path.join(root, exe) if name == 'xacro' else \
-                os.path.join(root, 'scripts', exe)
-            write(path, WRAPPER.format(doc='%s %s, as arm1 provides it.' % (name, exe),
-                                       arm1=ARM1, module=module), executable=True)
+            path = (
+                os.path.join(root, exe) if name == 'xacro' else os.path.join(root, 'scripts', exe)
+            )
+            write(
+                path,
+                WRAPPER.format(
+                    doc='%s %s, as arm1 provides it.' % (name, exe), arm1=ARM1, module=module
+                ),
+                executable=True,
+            )
     args = '\n'.join('  <arg name="%s" default="%s"/>' % a for a in EMPTY_WORLD_ARGS)
-    write(os.path.join(dest, 'gazebo_ros', 'launch', 'empty_world.launch'),
-          EMPTY_WORLD.format(args=args))
+    write(
+        os.path.join(dest, 'gazebo_ros', 'launch', 'empty_world.launch'),
+        EMPTY_WORLD.format(args=args),
+    )
 
 
 if __name__ == '__main__':

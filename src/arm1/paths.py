@@ -4,6 +4,7 @@ The package is used from its source tree (the devel space imports src/arm1), so 
 root is two levels above the package. Looking a package up on the ROS package path is
 another matter: see ros/packages.py.
 """
+
 from __future__ import annotations
 
 import os

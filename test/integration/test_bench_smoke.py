@@ -1,4 +1,6 @@
-"""`make bench --quick` runs end to end and its figures are sane (not the goals: machines are noisy)."""
+"""`make bench --quick` runs end to end and its figures are sane (not the goals: machines are
+noisy)."""
+
 import json
 import subprocess
 import sys
@@ -9,8 +11,13 @@ import pytest
 @pytest.fixture(scope='module')
 def quick_bench(tmp_path_factory):
     out = tmp_path_factory.mktemp('bench')
-    proc = subprocess.run([sys.executable, '-m', 'arm1.bench', '--quick', '--out', str(out)],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+    proc = subprocess.run(
+        [sys.executable, '-m', 'arm1.bench', '--quick', '--out', str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        timeout=600,
+    )
     assert proc.returncode == 0, proc.stdout[-3000:]
     with open(out / 'bench' / 'results.json') as f:
         return out, json.load(f), proc.stdout
@@ -24,8 +31,13 @@ def test_writes_table_json_and_plot(quick_bench):
     out, results, stdout = quick_bench
     assert (out / 'bench' / 'bench.png').stat().st_size > 10000
     table = (out / 'BENCHMARKS.md').read_text()
-    for figure in ('real-time factor', 'stand-in / bare speed ratio', 'command latency p99',
-                   'start-up', 'peak resident memory'):
+    for figure in (
+        'real-time factor',
+        'stand-in / bare speed ratio',
+        'command latency p99',
+        'start-up',
+        'peak resident memory',
+    ):
         assert figure in table
     assert '| figure | median |' in stdout
 

@@ -1,7 +1,9 @@
-"""RosSession (make demo, bench, soak) keeps its master and nodes on loopback, whatever the shell says.
+"""RosSession (make demo, bench, soak) keeps its master and nodes on loopback, whatever the shell
+says.
 
 ROS 1 has no authentication: a port reachable from the network lets anyone move the arm.
 """
+
 import os
 import time
 
@@ -19,13 +21,19 @@ def outside(pid):
 
 
 def test_loopback_env_drops_ros_ip_and_keeps_the_master_port():
-    env = loopback_env({'ROS_IP': '192.0.2.7', 'ROS_MASTER_URI': 'http://192.0.2.7:12345/',
-                        'PATH': '/bin'})
-    assert env == {'ROS_HOSTNAME': 'localhost', 'ROS_MASTER_URI': 'http://localhost:12345',
-                   'PATH': '/bin'}
+    env = loopback_env(
+        {'ROS_IP': '192.0.2.7', 'ROS_MASTER_URI': 'http://192.0.2.7:12345/', 'PATH': '/bin'}
+    )
+    assert env == {
+        'ROS_HOSTNAME': 'localhost',
+        'ROS_MASTER_URI': 'http://localhost:12345',
+        'PATH': '/bin',
+    }
     assert loopback_env({})['ROS_MASTER_URI'] == 'http://localhost:11311'
-    assert loopback_env({'ROS_MASTER_URI': 'http://host:11311'}, 2000)['ROS_MASTER_URI'] == \
-        'http://localhost:2000'
+    assert (
+        loopback_env({'ROS_MASTER_URI': 'http://host:11311'}, 2000)['ROS_MASTER_URI']
+        == 'http://localhost:2000'
+    )
 
 
 # Shells that would put every node on all interfaces: ROS's default (neither variable set),
@@ -49,15 +57,21 @@ def test_session_master_world_and_roslaunch_listen_on_loopback_only(monkeypatch,
             except Exception:  # not registered yet (rosgraph.MasterError / socket errors)
                 assert time.monotonic() < deadline, 'the world /gazebo never registered'
                 time.sleep(0.2)
-        for who, pid in (('master', master.getPid()), ('world /gazebo', world),
-                         ('roslaunch', launch.pid)):
+        for who, pid in (
+            ('master', master.getPid()),
+            ('world /gazebo', world),
+            ('roslaunch', launch.pid),
+        ):
             assert listening_addresses(pid), '%s listens on no TCP port' % who
             assert outside(pid) == [], '%s listens beyond loopback' % who
         # Every Python process roslaunch started (master, spawner, joint_state_publisher,
         # world); the roscpp ones (rosout, robot_state_publisher) bind XML-RPC on every
         # interface whatever ROS_HOSTNAME says: xmlrpcpp has no bind address.
-        children = [p for p in psutil.Process(launch.pid).children(recursive=True)
-                    if 'python' in os.path.basename(p.exe())]
+        children = [
+            p
+            for p in psutil.Process(launch.pid).children(recursive=True)
+            if 'python' in os.path.basename(p.exe())
+        ]
         assert len(children) >= 4, [p.cmdline() for p in children]
         for p in children:
             assert outside(p.pid) == [], ' '.join(p.cmdline())

@@ -1,29 +1,37 @@
 """control/angles.py against the ROS ``angles`` package."""
+
 import math
 
 import pytest
 
-from arm1.control.angles import (normalize_angle, shortest_angular_distance,
-                                 shortest_angular_distance_with_large_limits, two_pi_complement)
+from arm1.control.angles import (
+    normalize_angle,
+    shortest_angular_distance,
+    shortest_angular_distance_with_large_limits,
+    two_pi_complement,
+)
 
 PI = math.pi
 
 
-@pytest.mark.parametrize('angle, expected', [
-    (0.0, 0.0),
-    (1.0, 1.0),
-    (-1.0, -1.0),
-    (PI / 2, PI / 2),
-    (3 * PI / 2, -PI / 2),
-    (-3 * PI / 2, PI / 2),
-    (2 * PI, 0.0),
-    (-2 * PI, 0.0),
-    (7 * PI / 2, -PI / 2),
-    (10.5 * PI, 0.5 * PI),
-    (-10.5 * PI, -0.5 * PI),
-    (PI, PI),
-    (-PI, PI),  # the range is (-pi, pi]
-])
+@pytest.mark.parametrize(
+    'angle, expected',
+    [
+        (0.0, 0.0),
+        (1.0, 1.0),
+        (-1.0, -1.0),
+        (PI / 2, PI / 2),
+        (3 * PI / 2, -PI / 2),
+        (-3 * PI / 2, PI / 2),
+        (2 * PI, 0.0),
+        (-2 * PI, 0.0),
+        (7 * PI / 2, -PI / 2),
+        (10.5 * PI, 0.5 * PI),
+        (-10.5 * PI, -0.5 * PI),
+        (PI, PI),
+        (-PI, PI),  # the range is (-pi, pi]
+    ],
+)
 def test_normalize_angle(angle, expected):
     assert normalize_angle(angle) == pytest.approx(expected, abs=1e-9)
 
@@ -36,24 +44,30 @@ def test_normalize_angle_range_and_equivalence(angle):
     assert math.sin(a) == pytest.approx(math.sin(angle), abs=1e-9)
 
 
-@pytest.mark.parametrize('frm, to, expected', [
-    (0.0, 1.0, 1.0),
-    (1.0, 0.0, -1.0),
-    (3.0, -3.0, 2 * PI - 6.0),  # across +-pi: the short way is positive
-    (-3.0, 3.0, 6.0 - 2 * PI),
-    (0.0, 3 * PI / 2, -PI / 2),
-    (PI / 4, -PI / 4, -PI / 2),
-    (0.0, 4 * PI + 0.1, 0.1),
-])
+@pytest.mark.parametrize(
+    'frm, to, expected',
+    [
+        (0.0, 1.0, 1.0),
+        (1.0, 0.0, -1.0),
+        (3.0, -3.0, 2 * PI - 6.0),  # across +-pi: the short way is positive
+        (-3.0, 3.0, 6.0 - 2 * PI),
+        (0.0, 3 * PI / 2, -PI / 2),
+        (PI / 4, -PI / 4, -PI / 2),
+        (0.0, 4 * PI + 0.1, 0.1),
+    ],
+)
 def test_shortest_angular_distance(frm, to, expected):
     assert shortest_angular_distance(frm, to) == pytest.approx(expected, abs=1e-9)
 
 
-@pytest.mark.parametrize('angle, expected', [
-    (0.5, 0.5 - 2 * PI),
-    (-0.5, 2 * PI - 0.5),
-    (0.0, 2 * PI),
-])
+@pytest.mark.parametrize(
+    'angle, expected',
+    [
+        (0.5, 0.5 - 2 * PI),
+        (-0.5, 2 * PI - 0.5),
+        (0.0, 2 * PI),
+    ],
+)
 def test_two_pi_complement(angle, expected):
     assert two_pi_complement(angle) == pytest.approx(expected)
 

@@ -1,12 +1,17 @@
 """arm_nodes.py, arm_mover's part: joint ranges from the URDF, clamping, arrival."""
+
 import math
 
 import pytest
 
 from arm1.goal.arm_mover import clamp_request, describe, joint_limits, off_target
 
-ARM1_RANGES = {'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57), 'joint3': (-1.0, 1.57),
-               'joint4': (-0.8, 1.57)}
+ARM1_RANGES = {
+    'joint1': (-1.57, 1.57),
+    'joint2': (0.01, 1.57),
+    'joint3': (-1.0, 1.57),
+    'joint4': (-0.8, 1.57),
+}
 
 
 def test_default_ranges_are_the_urdf_limits(arm1_urdf):
@@ -19,12 +24,12 @@ def test_in_range_requests_pass_unchanged():
 
 
 def test_out_of_range_values_are_clamped_with_a_warning_naming_joint_and_range():
-    targets, warnings = clamp_request({'joint1': 3.0, 'joint2': -1.0, 'joint3': 0.2},
-                                      ARM1_RANGES)
+    targets, warnings = clamp_request({'joint1': 3.0, 'joint2': -1.0, 'joint3': 0.2}, ARM1_RANGES)
     assert targets == {'joint1': 1.57, 'joint2': 0.01, 'joint3': 0.2}
     assert warnings == [
         'joint1 = 3.000 is out of range [-1.570, 1.570]: clamped to 1.570',
-        'joint2 = -1.000 is out of range [0.010, 1.570]: clamped to 0.010']
+        'joint2 = -1.000 is out of range [0.010, 1.570]: clamped to 0.010',
+    ]
 
 
 @pytest.mark.parametrize('bad', [math.nan, math.inf])
@@ -42,5 +47,7 @@ def test_arrival_within_tolerance():
 
 
 def test_timeout_text_says_where_the_joints_are():
-    assert describe(['joint2', 'joint4'], {'joint2': 1.5693}, {'joint2': 3.0, 'joint4': 0.1}) == \
-        'joint2 at 1.569 (target 3.000), joint4 at unknown (target 0.100)'
+    assert (
+        describe(['joint2', 'joint4'], {'joint2': 1.5693}, {'joint2': 3.0, 'joint4': 0.1})
+        == 'joint2 at 1.569 (target 3.000), joint4 at unknown (target 0.100)'
+    )

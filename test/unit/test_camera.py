@@ -1,4 +1,6 @@
-"""Cameras: sensors from the URDF (description.camera_sensor), their geometry, scheduling and rendering."""
+"""Cameras: sensors from the URDF (description.camera_sensor), their geometry, scheduling and
+rendering."""
+
 import io
 import math
 import os
@@ -10,28 +12,34 @@ import zlib
 import numpy as np
 import pybullet as p
 import pytest
+from conftest import WORLD_FILE, box_link
 from PIL import Image
 
-from arm1.goal.image import is_uniform, png
-from arm1.sim.pacer import Pacer
-from arm1.physics import sensor_manager
 from arm1.description.camera_sensor import CameraSensor, camera_sensors
-from arm1.physics.camera_geometry import intrinsics, view_matrix
-from arm1.physics.render_process import RenderError, encode, render
-from arm1.physics.sensor_manager import Camera, SensorManager
 from arm1.description.limits import LimitError, Limits
 from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.description.urdf_model import UrdfError, parse_urdf
+from arm1.goal.image import is_uniform, png
+from arm1.physics import sensor_manager
+from arm1.physics.camera_geometry import intrinsics, view_matrix
+from arm1.physics.render_process import RenderError, encode, render
+from arm1.physics.sensor_manager import Camera, SensorManager
+from arm1.sim.pacer import Pacer
 from arm1.sim.simulation import Simulation, SpawnError
-from conftest import WORLD_FILE, box_link
 
 STEP_NS = 1000000  # 1 ms physics step
 
 
 def robot_with(sensor_xml, link='b'):
-    return ('<robot name="r">' + box_link('a') + box_link('b') + """
+    return (
+        '<robot name="r">'
+        + box_link('a')
+        + box_link('b')
+        + """
   <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
-  <gazebo reference="%s">%s</gazebo></robot>""" % (link, sensor_xml))
+  <gazebo reference="%s">%s</gazebo></robot>"""
+        % (link, sensor_xml)
+    )
 
 
 def sensors_of(xml):
@@ -54,12 +62,14 @@ def test_arm1_camera_as_the_reference_gives_it(arm1_urdf):
 
 
 def test_defaults_namespace_and_plugin_rate():
-    [s] = sensors_of(robot_with("""
+    [s] = sensors_of(
+        robot_with("""
       <sensor type="camera" name="eye"><update_rate>60</update_rate><camera/>
         <plugin name="c" filename="libgazebo_ros_camera.so">
           <robotNamespace>/bot</robotNamespace><cameraName>front</cameraName>
           <updateRate>10</updateRate><cameraInfoTopicName>/info</cameraInfoTopicName>
-        </plugin></sensor>"""))
+        </plugin></sensor>""")
+    )
     # SDF's and gazebo_ros_camera's defaults; the plugin's updateRate throttles the sensor
     assert (s.width, s.height, s.format, s.horizontal_fov) == (320, 240, 'R8G8B8', 1.047)
     assert (s.near, s.far, s.frame_name, s.update_rate) == (0.1, 100.0, 'world', 10.0)
@@ -75,17 +85,24 @@ def test_only_cameras_with_the_ros_plugin_are_rendered():
 
 
 def test_other_formats_and_bad_values():
-    fmt = '<sensor type="camera" name="c"><camera><image><format>%s</format></image></camera>' \
-          '<plugin filename="libgazebo_ros_camera.so"/></sensor>'
+    fmt = (
+        '<sensor type="camera" name="c"><camera><image><format>%s</format></image></camera>'
+        '<plugin filename="libgazebo_ros_camera.so"/></sensor>'
+    )
     assert sensors_of(robot_with(fmt % 'L8'))[0].encoding == 'mono8'
     assert sensors_of(robot_with(fmt % 'B8G8R8'))[0].step == 320 * 3
     assert sensors_of(robot_with(fmt % 'FLOAT32'))[0].encoding == 'rgb8'  # with a warning
-    bad = robot_with('<sensor type="camera" name="c"><camera><image><width>wide</width></image>'
-                     '</camera><plugin filename="libgazebo_ros_camera.so"/></sensor>')
+    bad = robot_with(
+        '<sensor type="camera" name="c"><camera><image><width>wide</width></image>'
+        '</camera><plugin filename="libgazebo_ros_camera.so"/></sensor>'
+    )
     with pytest.raises(UrdfError, match="sensor 'c' on link 'b'.*wide"):
         sensors_of(bad)
-    nowhere = robot_with('<sensor type="camera" name="c"><camera/>'
-                         '<plugin filename="libgazebo_ros_camera.so"/></sensor>', link='ghost')
+    nowhere = robot_with(
+        '<sensor type="camera" name="c"><camera/>'
+        '<plugin filename="libgazebo_ros_camera.so"/></sensor>',
+        link='ghost',
+    )
     with pytest.raises(UrdfError, match="link 'ghost'"):
         sensors_of(nowhere)
 
@@ -118,7 +135,7 @@ def test_pixels_in_each_format():
 # ---------------------------------------------------------------------- scheduling
 def test_updates_at_30_hz_in_sim_time():
     cam = Camera('m', CameraSensor('c', 'l', update_rate=30))
-    ticks = [t for t in range(STEP_NS, 3 * 10 ** 9, STEP_NS) if cam.due(t)]
+    ticks = [t for t in range(STEP_NS, 3 * 10**9, STEP_NS) if cam.due(t)]
     assert len(ticks) == 90
     assert set(np.diff(ticks)) <= {33 * STEP_NS, 34 * STEP_NS}
     # reset_simulation: time back to zero, updates start again at once
@@ -127,6 +144,7 @@ def test_updates_at_30_hz_in_sim_time():
 
 class FakeClock:
     """Sim time as the fake render processes see it (a frame takes ``render_ns`` of it)."""
+
     now = 0
 
 
@@ -153,12 +171,12 @@ class FakeRenderer:
             del self.robots[message[1]]
         else:
             self.requests.append((message[2].name, message[3]))
-            self.done_at.append(None if self.render_ns is None
-                                else self.clock.now + self.render_ns)
+            self.done_at.append(None if self.render_ns is None else self.clock.now + self.render_ns)
 
     def ready(self):
-        return self.dead or (bool(self.done_at) and self.done_at[0] is not None
-                             and self.done_at[0] <= self.clock.now)
+        return self.dead or (
+            bool(self.done_at) and self.done_at[0] is not None and self.done_at[0] <= self.clock.now
+        )
 
     def receive(self, timeout=None):
         if self.dead:
@@ -179,6 +197,7 @@ def manager_with_fakes(processes, lockstep=False, render_ns=None, limits=None, *
     def factory(config, robots):
         made.append(FakeRenderer(config, robots, clock, render_ns))
         return made[-1]
+
     config = WorldConfig(lockstep=lockstep, limits=limits or Limits())
     return SensorManager(config, processes, factory, **kwargs), made, clock
 
@@ -202,10 +221,10 @@ def test_nothing_is_rendered_without_a_subscriber(lockstep):
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
     infos = []
     cam.on_info = infos.append
-    run(manager, clock, STEP_NS, 10 ** 9)
+    run(manager, clock, STEP_NS, 10**9)
     assert made == [] and infos == []  # no render process was even started
     cam.wants_info = lambda: True  # camera_info alone: published without rendering
-    run(manager, clock, 10 ** 9, 2 * 10 ** 9)
+    run(manager, clock, 10**9, 2 * 10**9)
     assert made == [] and len(infos) == 30
 
 
@@ -215,7 +234,7 @@ def test_lockstep_every_update_instant_gets_its_frame_in_order(processes):
     manager.add_robot('other', ('other.urdf',))
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
     frames = watched(cam)
-    run(manager, clock, STEP_NS, 10 ** 9)  # the robots' state at each step is its time
+    run(manager, clock, STEP_NS, 10**9)  # the robots' state at each step is its time
     assert len(made) == processes
     assert all(set(r.robots) == {'other', 'm'} for r in made)  # each mirrors every robot
     asked = sorted(states['m'] for r in made for _, states in r.requests)
@@ -223,7 +242,7 @@ def test_lockstep_every_update_instant_gets_its_frame_in_order(processes):
     assert set(np.diff(asked)) <= {33 * STEP_NS, 34 * STEP_NS}
     # the renderers never finished on their own: the world waited, so that no more than one
     # frame per render process was ever out; frames came in order, each with its instant
-    assert [t for t, _ in frames] == asked[:30 - processes]
+    assert [t for t, _ in frames] == asked[: 30 - processes]
     assert sum(r.waited for r in made) == 30 - processes
     if processes == 2:  # the requests alternate between the two
         assert [len(r.requests) for r in made] == [15, 15]
@@ -236,7 +255,7 @@ def test_default_timing_never_waits_and_the_image_rate_drops():
     manager, made, clock = manager_with_fakes(1, render_ns=100 * STEP_NS)
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
     frames = watched(cam)
-    run(manager, clock, STEP_NS, 3 * 10 ** 9)
+    run(manager, clock, STEP_NS, 3 * 10**9)
     [r] = made
     assert r.waited == 0, 'the physics waited for a render process'
     # 10 frames a second instead of 30; the instants in between were skipped
@@ -249,12 +268,12 @@ def test_a_late_frame_shows_the_newest_state_stamped_with_its_time():
     manager, made, clock = manager_with_fakes(1, render_ns=50 * STEP_NS)
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
     frames = watched(cam)
-    run(manager, clock, STEP_NS, 10 ** 9)
+    run(manager, clock, STEP_NS, 10**9)
     stamps = [t for t, _ in frames]
     # asked for as soon as the renderer was free, with the state of that step, stamped so
     assert stamps[:5] == [STEP_NS + k * 50 * STEP_NS for k in range(5)]
     assert [states['m'] for _, states in made[0].requests][:5] == stamps[:5]
-    assert stamps[1] % (10 ** 9 // 30) not in (0, STEP_NS)  # not an update instant: late
+    assert stamps[1] % (10**9 // 30) not in (0, STEP_NS)  # not an update instant: late
     assert made[0].waited == 0
 
 
@@ -262,7 +281,7 @@ def test_two_render_processes_keep_every_instant_without_waiting():
     manager, made, clock = manager_with_fakes(2, render_ns=50 * STEP_NS)
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('c', 'l', update_rate=30)])
     frames = watched(cam)
-    run(manager, clock, STEP_NS, 2 * 10 ** 9)
+    run(manager, clock, STEP_NS, 2 * 10**9)
     stamps = [t for t, _ in frames]
     assert set(np.diff(stamps)) <= {33 * STEP_NS, 34 * STEP_NS}  # every instant, in order
     assert len(stamps) >= 58 and cam.skipped == 0
@@ -296,15 +315,17 @@ def test_a_deleted_models_camera_gets_no_late_frame_and_its_name_can_come_back()
     assert all('m' not in r.robots for r in made)  # gone from the render mirrors
     [new] = manager.add_robot('m', ('m2.urdf',), [CameraSensor('c', 'l', update_rate=30)])
     new_frames = watched(new)
-    run(manager, clock, 40 * STEP_NS, 10 ** 9)
+    run(manager, clock, 40 * STEP_NS, 10**9)
     assert old_frames == [] and old.frames == 0
     assert len(new_frames) >= 25 and all(r.robots['m'] == ('m2.urdf',) for r in made)
 
 
 # ---------------------------------------------------------------------------- limits
-BIG = ('<sensor type="camera" name="big"><update_rate>%s</update_rate><camera><image>'
-       '<width>%d</width><height>%d</height></image></camera>'
-       '<plugin filename="libgazebo_ros_camera.so"/></sensor>')
+BIG = (
+    '<sensor type="camera" name="big"><update_rate>%s</update_rate><camera><image>'
+    '<width>%d</width><height>%d</height></image></camera>'
+    '<plugin filename="libgazebo_ros_camera.so"/></sensor>'
+)
 
 
 def test_a_camera_over_the_pixel_limit_is_refused_naming_limit_value_and_parameter():
@@ -321,8 +342,11 @@ def test_a_camera_over_the_pixel_limit_is_refused_naming_limit_value_and_paramet
 
 def test_a_camera_over_the_rate_limit_is_refused():
     description = parse_urdf(robot_with(BIG % (5000, 64, 48)))
-    with pytest.raises(LimitError, match=r"sensor 'big'.*sensor update rate is 5000, over the "
-                                         r"limit of 1000 .*~limits/sensor_update_rate"):
+    with pytest.raises(
+        LimitError,
+        match=r"sensor 'big'.*sensor update rate is 5000, over the "
+        r"limit of 1000 .*~limits/sensor_update_rate",
+    ):
         camera_sensors(description, Limits())
     assert camera_sensors(description, Limits(sensor_update_rate=5000))[0].update_rate == 5000
 
@@ -336,16 +360,16 @@ def test_a_rate_that_is_no_rate_is_refused(rate):
 def test_the_worlds_render_budget_is_checked_before_anything_changes():
     limits = Limits(render_pixels_per_second=150e6)
     manager, made, clock = manager_with_fakes(1, limits=limits)
-    [arm_cam] = manager.add_robot('arm', ('arm.urdf',), [CameraSensor('eye', 'l', 30, width=640,
-                                                                      height=480)])
+    [arm_cam] = manager.add_robot(
+        'arm', ('arm.urdf',), [CameraSensor('eye', 'l', 30, width=640, height=480)]
+    )
     watched(arm_cam)
     run(manager, clock, STEP_NS, 3 * STEP_NS)  # a render process runs and mirrors the arm
     # 2000 x 2000 at 30 Hz = 120 Mpx/s; with the arm's 9.2 Mpx/s, under 150
     manager.add_robot('m1', ('m1.urdf',), [CameraSensor('c1', 'l', 30, width=2000, height=2000)])
     before = (list(manager.cameras), dict(made[0].robots))
     with pytest.raises(LimitError) as err:  # rate 0 counts as 60 Hz: 1 Mpx x 60 = 60 Mpx/s more
-        manager.add_robot('m2', ('m2.urdf',), [CameraSensor('c2', 'l', 0, width=1000,
-                                                            height=1000)])
+        manager.add_robot('m2', ('m2.urdf',), [CameraSensor('c2', 'l', 0, width=1000, height=1000)])
     msg = str(err.value)
     assert "camera 'c2' (1000x1000 at as fast as possible) with the world's 2 other" in msg
     assert 'render pixels per second is 189216000, over the limit of 150000000' in msg
@@ -357,13 +381,17 @@ def test_the_worlds_render_budget_is_checked_before_anything_changes():
 
 def test_spawning_a_6000x6000_camera_is_refused_and_leaves_nothing_behind(world_sim):
     sim = world_sim()
-    with pytest.raises(SpawnError, match=r"cannot spawn 'big'.*camera pixels is 36000000.*"
-                                         r"~limits/camera_pixels"):
+    with pytest.raises(
+        SpawnError,
+        match=r"cannot spawn 'big'.*camera pixels is 36000000.*"
+        r"~limits/camera_pixels",
+    ):
         sim.spawn_urdf('big', camera_on_a_box(6000, 6000, 30))
     # raised, the world's render budget (1.08 Gpx/s) still says no, and names its own limit
     sim.limits.camera_pixels = 36_000_000
-    with pytest.raises(SpawnError, match='render pixels per second is 1080000000.*'
-                                         '~limits/render_pixels_per_second'):
+    with pytest.raises(
+        SpawnError, match='render pixels per second is 1080000000.*~limits/render_pixels_per_second'
+    ):
         sim.spawn_urdf('big', camera_on_a_box(6000, 6000, 30))
     assert not sim.models and not sim.world.robots and not sim.sensors.cameras
     sim.limits.render_pixels_per_second = 1.1e9
@@ -374,19 +402,23 @@ def test_spawning_a_6000x6000_camera_is_refused_and_leaves_nothing_behind(world_
 # --------------------------------------------------------------- failing render processes
 @pytest.mark.parametrize('lockstep', [False, True])
 def test_a_dead_render_process_is_replaced_and_the_world_goes_on(caplog, lockstep):
-    manager, made, clock = manager_with_fakes(2, lockstep, render_ns=20 * STEP_NS,
-                                              restart_delay=0.0)
+    manager, made, clock = manager_with_fakes(
+        2, lockstep, render_ns=20 * STEP_NS, restart_delay=0.0
+    )
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('eye', 'l', update_rate=30)])
     watched(cam)
     run(manager, clock, STEP_NS, 200 * STEP_NS)
     before = cam.frames
     made[0].dead = True
-    run(manager, clock, 200 * STEP_NS, 10 ** 9)
+    run(manager, clock, 200 * STEP_NS, 10**9)
     assert made[0].closed and made[0] not in manager.renderers
     assert len(made) == 3 and len(manager.renderers) == 2 and manager.restarts == 1
     assert cam.frames - before >= 20 and not manager.failed
-    assert any("'eye'" in r.message and 'gone' in r.message for r in caplog.records
-               if r.levelname == 'ERROR')
+    assert any(
+        "'eye'" in r.message and 'gone' in r.message
+        for r in caplog.records
+        if r.levelname == 'ERROR'
+    )
 
 
 def test_a_hung_render_process_is_replaced(monkeypatch):
@@ -407,6 +439,7 @@ def test_cameras_give_up_after_repeated_failures_and_say_so(caplog):
     def broken(config, robots):
         started.append(1)
         raise OSError('no such interpreter')
+
     manager = SensorManager(WorldConfig(), 1, broken, restart_delay=0.0, max_restarts=3)
     [cam] = manager.add_robot('m', ('m.urdf',), [CameraSensor('eye', 'l', update_rate=30)])
     watched(cam)
@@ -470,11 +503,13 @@ def test_render_processes_mirror_the_arm(arm1_sim):
 
 def camera_on_a_box(width=64, height=48, rate=30):
     """A one-link model (no joints at all) with a camera looking down at the ground."""
-    return ('<robot name="box">%s<gazebo reference="body"><sensor type="camera" name="eye">'
-            '<update_rate>%g</update_rate><pose>0 0 0.5 0 1.2 0</pose><camera><image>'
-            '<width>%d</width><height>%d</height></image></camera>'
-            '<plugin filename="libgazebo_ros_camera.so"><cameraName>eye</cameraName></plugin>'
-            '</sensor></gazebo></robot>' % (box_link('body'), rate, width, height))
+    return (
+        '<robot name="box">%s<gazebo reference="body"><sensor type="camera" name="eye">'
+        '<update_rate>%g</update_rate><pose>0 0 0.5 0 1.2 0</pose><camera><image>'
+        '<width>%d</width><height>%d</height></image></camera>'
+        '<plugin filename="libgazebo_ros_camera.so"><cameraName>eye</cameraName></plugin>'
+        '</sensor></gazebo></robot>' % (box_link('body'), rate, width, height)
+    )
 
 
 @pytest.fixture
@@ -486,6 +521,7 @@ def world_sim():
         config.lockstep = lockstep
         sims.append(Simulation(config))
         return sims[-1]
+
     yield make
     for sim in sims:
         sim.close()
@@ -533,13 +569,16 @@ def test_a_killed_render_process_is_replaced_and_the_world_steps_on(world_sim, c
     os.kill(victim.pid, signal.SIGKILL)
     count, t0 = len(frames), sim.time_ns
     pids = lambda: {r.pid for r in sim.sensors.renderers}  # noqa: E731
-    longest = step_until(sim, lambda: len(frames) >= count + 10 and len(pids()) == 2
-                         and victim.pid not in pids(), 30)
+    longest = step_until(
+        sim, lambda: len(frames) >= count + 10 and len(pids()) == 2 and victim.pid not in pids(), 30
+    )
     assert longest < 0.1, 'a step took %.3f s' % longest  # the world did not stop for it
     assert victim.process.poll() == -signal.SIGKILL  # reaped, not a zombie
     assert frames[-1][0] > t0 and sim.sensors.restarts == 1 and not sim.sensors.failed
-    assert any(r.levelname == 'ERROR' and "'eye'" in r.message and 'killed by signal 9'
-               in r.message for r in caplog.records)
+    assert any(
+        r.levelname == 'ERROR' and "'eye'" in r.message and 'killed by signal 9' in r.message
+        for r in caplog.records
+    )
 
 
 @pytest.mark.parametrize('lockstep', [False, True], ids=['default', 'lockstep'])
@@ -554,8 +593,10 @@ def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(world_sim
     step_until(sim, lambda: time.perf_counter() - wall0 >= seconds, 60, pacer)
     rtf = (sim.time_ns - sim0) * 1e-9 / (time.perf_counter() - wall0)
     rate = (len(frames) - count) / ((sim.time_ns - sim0) * 1e-9)
-    print('%s: real-time factor %.3f, %.1f images per sim second'
-          % ('lockstep' if lockstep else 'default', rtf, rate))
+    print(
+        '%s: real-time factor %.3f, %.1f images per sim second'
+        % ('lockstep' if lockstep else 'default', rtf, rate)
+    )
     if lockstep:  # every 30 Hz instant gets its frame, and the world slows down for them
         assert rate >= 29 and rtf < 0.8
     else:
@@ -568,9 +609,9 @@ def decode_png(data):
     assert data[:8] == b'\x89PNG\r\n\x1a\n'
     chunks, pos = {}, 8
     while pos < len(data):
-        (n,), tag = struct.unpack('>I', data[pos:pos + 4]), data[pos + 4:pos + 8]
-        body = data[pos + 8:pos + 8 + n]
-        assert struct.unpack('>I', data[pos + 8 + n:pos + 12 + n])[0] == zlib.crc32(tag + body)
+        (n,), tag = struct.unpack('>I', data[pos : pos + 4]), data[pos + 4 : pos + 8]
+        body = data[pos + 8 : pos + 8 + n]
+        assert struct.unpack('>I', data[pos + 8 + n : pos + 12 + n])[0] == zlib.crc32(tag + body)
         chunks[tag] = body
         pos += 12 + n
     w, h, depth, kind = struct.unpack('>IIBB', chunks[b'IHDR'][:10])

@@ -4,6 +4,7 @@ so a client built against upstream's definitions talks to arm1 and arm1 to it.
 
 Needs the built workspace (tools/ws-run python -m pytest test/unit/test_compat_msgs.py).
 """
+
 from __future__ import annotations
 
 import importlib
@@ -16,8 +17,15 @@ import pytest
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEFINITIONS = os.path.join(REPO_ROOT, 'tools', 'compat_msgs')
 PACKAGES = ('gazebo_msgs', 'control_msgs', 'controller_manager_msgs')
-ACTION_PARTS = ('Goal', 'Result', 'Feedback', 'ActionGoal', 'ActionResult', 'ActionFeedback',
-                'Action')
+ACTION_PARTS = (
+    'Goal',
+    'Result',
+    'Feedback',
+    'ActionGoal',
+    'ActionResult',
+    'ActionFeedback',
+    'Action',
+)
 
 # md5s listed in shared/reference (ros-controllers-semantics.md §4, gazebo-ros-api.md §2).
 REFERENCE = {
@@ -179,9 +187,12 @@ def test_classes_clients_use_import_with_upstream_constants() -> None:
 
 def test_arm1_keeps_no_copies_of_upstream_types() -> None:
     # Only arm1's own arm_mover service is left in arm1's msg/ and srv/.
-    own = [os.path.join(d, f) for d in ('msg', 'srv')
-           if os.path.isdir(os.path.join(REPO_ROOT, d))
-           for f in os.listdir(os.path.join(REPO_ROOT, d))]
+    own = [
+        os.path.join(d, f)
+        for d in ('msg', 'srv')
+        if os.path.isdir(os.path.join(REPO_ROOT, d))
+        for f in os.listdir(os.path.join(REPO_ROOT, d))
+    ]
     assert own == ['srv/GoToPosition.srv']
 
 

@@ -1,22 +1,27 @@
-"""Bad input to the controller manager and the position controller: refused or clamped, said once."""
+"""Bad input to the controller manager and the position controller: refused or clamped, said
+once."""
+
 import logging
 import math
 
 import pytest
-
-from arm1.control.controller_manager import BEST_EFFORT, STRICT, ControllerManagerError
 from conftest import pump_switch
 from test_controller_manager import rig, states  # noqa: F401 (rig is a fixture)
 from test_joint_position_controller import Rig
 
+from arm1.control.controller_manager import BEST_EFFORT, STRICT, ControllerManagerError
 
-@pytest.mark.parametrize('name, why', [
-    ('', 'the name is empty'),
-    ('two words', 'not a valid controller name'),
-    ('/absolute', 'not a valid controller name'),
-    ('../up', 'not a valid controller name'),
-    ('x' * 300, 'not a valid controller name'),
-])
+
+@pytest.mark.parametrize(
+    'name, why',
+    [
+        ('', 'the name is empty'),
+        ('two words', 'not a valid controller name'),
+        ('/absolute', 'not a valid controller name'),
+        ('../up', 'not a valid controller name'),
+        ('x' * 300, 'not a valid controller name'),
+    ],
+)
 def test_load_refuses_names_that_are_not_relative_ros_names(rig, name, why):  # noqa: F811
     cm, _, _, _ = rig
     with pytest.raises(ControllerManagerError, match=why) as info:
@@ -50,7 +55,8 @@ def test_strict_names_the_first_unknown_only(rig, caplog):  # noqa: F811
     with caplog.at_level(logging.ERROR, logger='arm1.control'):
         assert cm.switch_controller(['ghost%d' % i for i in range(1000)], [], STRICT) is False
     assert [r.getMessage() for r in caplog.records] == [
-        "Could not start controller 'ghost0': it is not loaded"]
+        "Could not start controller 'ghost0': it is not loaded"
+    ]
 
 
 @pytest.mark.parametrize('strictness', [0, 3, -1])
@@ -73,30 +79,33 @@ def test_a_timeout_no_wait_can_take_means_wait_for_the_update(rig, timeout):  # 
 
 
 def test_a_command_outside_the_limits_is_clamped_and_said_once_per_start(caplog):
-    rig = Rig('slider_joint', {'p': 1.0})
-    caplog.clear()  # the rig's own passive-joint message
-    rig.start()
+    jrig = Rig('slider_joint', {'p': 1.0})
+    caplog.clear()  # the jrig's own passive-joint message
+    jrig.start()
     with caplog.at_level(logging.WARNING, logger='arm1.control'):
-        rig.command(1e300)
-        rig.command(-5.0)
-        rig.command(0.1)
-    rig.update()
-    assert rig.states()[-1]['set_point'] == pytest.approx(0.1)
+        jrig.command(1e300)
+        jrig.command(-5.0)
+        jrig.command(0.1)
+    jrig.update()
+    assert jrig.states()[-1]['set_point'] == pytest.approx(0.1)
     said = [r.getMessage() for r in caplog.records]
-    assert len(said) == 1 and 'c: command 1e+300 for joint slider_joint is outside its limits' \
-        in said[0] and 'clamped to 0.2000' in said[0], said
-    rig.stop()
-    rig.start()
+    assert (
+        len(said) == 1
+        and 'c: command 1e+300 for joint slider_joint is outside its limits' in said[0]
+        and 'clamped to 0.2000' in said[0]
+    ), said
+    jrig.stop()
+    jrig.start()
     with caplog.at_level(logging.WARNING, logger='arm1.control'):
-        rig.command(7.0)
+        jrig.command(7.0)
     assert len(caplog.records) == 2
 
 
 def test_negative_gains_apply_with_a_warning_naming_the_controller(caplog):
-    rig = Rig('flap_joint', {'p': 1.0})
+    jrig = Rig('flap_joint', {'p': 1.0})
     caplog.clear()
     with caplog.at_level(logging.WARNING, logger='arm1.control'):
-        applied = rig.c.set_gains({'p': -2.0, 'd': -0.5})
+        applied = jrig.c.set_gains({'p': -2.0, 'd': -0.5})
     assert (applied['p'], applied['d']) == (-2.0, -0.5)
     said = [r.getMessage() for r in caplog.records]
     assert len(said) == 1 and said[0].startswith('c: negative pid gain(s) p=-2, d=-0.5')

@@ -1,9 +1,11 @@
 """control/loop.py: controllers update once per <controlPeriod> of sim time, as
 gazebo_ros_control's Update() has it; efforts are written every physics step."""
+
 import logging
 import math
 
 import pytest
+from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos, mixed_params
 
 from arm1.control.controller_manager import ControllerManager
 from arm1.control.loop import ControlLoop, control_period_ns
@@ -12,7 +14,6 @@ from arm1.description.sdf_world import WorldConfig
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.robot_hw_sim import DefaultRobotHWSim
 from arm1.sim.simulation import Simulation
-from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos, mixed_params
 
 NS = '/mixed_ns'
 STEP_NS = 1000000  # a 1 ms physics step
@@ -104,18 +105,19 @@ def test_a_control_period_shorter_than_the_step_is_said_and_updates_every_step(c
 
 
 def test_the_simulation_honours_the_urdf_control_period():
-    xml = MIXED_URDF.replace('<robotSimType>',
-                             '<controlPeriod>0.01</controlPeriod><robotSimType>')
+    xml = MIXED_URDF.replace('<robotSimType>', '<controlPeriod>0.01</controlPeriod><robotSimType>')
     assert parse_urdf(xml).control_plugin.control_period == pytest.approx(0.01)
     sim = Simulation(WorldConfig())
     try:
         ros = FakeRos(mixed_params())
-        model = sim.spawn_urdf('mixed', xml, controller_manager_factory=lambda hw, ns:
-                               ControllerManager(hw, ros.node_handle, ns))
+        model = sim.spawn_urdf(
+            'mixed',
+            xml,
+            controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+        )
         assert model.control is not None and model.control.period_ns == 10 * STEP_NS
         model.controller_manager.load_controller('flap_controller')
-        assert switch_while_updating(model.controller_manager, ['flap_controller'], [],
-                                     sim.step)[0]
+        assert switch_while_updating(model.controller_manager, ['flap_controller'], [], sim.step)[0]
         for _ in range(1000):
             sim.step()
         states = ros.messages(NS + '/flap_controller/state')

@@ -1,19 +1,32 @@
 """effort_controllers/JointPositionController (control/joint_position_controller.py)."""
+
 import math
 
 import pytest
+from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos
 
 from arm1.control.controller import ControllerError
 from arm1.control.joint_position_controller import JointPositionController
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.robot_hw_sim import DefaultRobotHWSim
-from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos
 
 NS = '/mixed_ns'
 DT = 0.001
 DT_NS = 1000000
-STATE_FIELDS = {'stamp', 'set_point', 'process_value', 'process_value_dot', 'error', 'time_step',
-                'command', 'p', 'i', 'd', 'i_clamp', 'antiwindup'}
+STATE_FIELDS = {
+    'stamp',
+    'set_point',
+    'process_value',
+    'process_value_dot',
+    'error',
+    'time_step',
+    'command',
+    'p',
+    'i',
+    'd',
+    'i_clamp',
+    'antiwindup',
+}
 
 
 class Rig:
@@ -70,8 +83,9 @@ def test_subscribes_command_and_advertises_state_under_the_controller_namespace(
     rig = Rig('flap_joint', {'p': 1})
     assert list(rig.ros.subscribers) == [NS + '/c/command']
     assert list(rig.ros.publishers) == [NS + '/c/state']
-    assert rig.c.claimed_resources() == [('hardware_interface/EffortJointInterface',
-                                          ['flap_joint'])]
+    assert rig.c.claimed_resources() == [
+        ('hardware_interface/EffortJointInterface', ['flap_joint'])
+    ]
 
 
 def test_starting_holds_the_current_position_and_drops_earlier_commands():
@@ -128,10 +142,15 @@ def test_effort_is_pid_of_position_error():
     assert rig.update() == pytest.approx(3.0 * 0.3)
 
 
-@pytest.mark.parametrize('joint, cmd, clamped', [
-    ('flap_joint', 10.0, 3.0), ('flap_joint', -10.0, -3.0),
-    ('slider_joint', 1.0, 0.2), ('slider_joint', -1.0, -0.1),
-])
+@pytest.mark.parametrize(
+    'joint, cmd, clamped',
+    [
+        ('flap_joint', 10.0, 3.0),
+        ('flap_joint', -10.0, -3.0),
+        ('slider_joint', 1.0, 0.2),
+        ('slider_joint', -1.0, -0.1),
+    ],
+)
 def test_command_is_clamped_to_urdf_limits(joint, cmd, clamped):
     rig = Rig(joint, {'p': 1.0})
     rig.at(0.0)

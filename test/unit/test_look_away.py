@@ -1,9 +1,10 @@
 """arm_nodes.py, look_away's part: the uniform-image test and when to look away."""
+
 import numpy as np
 import pytest
 
-from arm1.goal.look_away import LookAwayPolicy
 from arm1.goal.image import is_uniform
+from arm1.goal.look_away import LookAwayPolicy
 
 
 def image(pixels, step=None):
@@ -11,7 +12,7 @@ def image(pixels, step=None):
     h, w, c = pixels.shape
     step = step or w * c
     rows = np.zeros((h, step), np.uint8)
-    rows[:, :w * c] = pixels.reshape(h, w * c)
+    rows[:, : w * c] = pixels.reshape(h, w * c)
     return rows.tobytes(), w, h, step
 
 

@@ -47,12 +47,21 @@ def test_bounding_box_matches_reference(mesh):
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     tol = TOLERANCE * ref_extent
     for axis, name in enumerate('xyz'):
-        assert abs((hi - lo)[axis] - ref_extent[axis]) <= tol[axis], \
+        assert abs((hi - lo)[axis] - ref_extent[axis]) <= tol[axis], (
             '%s: %s extent %.4f, reference %.4f' % (link, name, (hi - lo)[axis], ref_extent[axis])
-        assert abs(lo[axis] - ref_min[axis]) <= tol[axis], \
-            '%s: %s min %.4f, reference %.4f' % (link, name, lo[axis], ref_min[axis])
-        assert abs(hi[axis] - ref_max[axis]) <= tol[axis], \
-            '%s: %s max %.4f, reference %.4f' % (link, name, hi[axis], ref_max[axis])
+        )
+        assert abs(lo[axis] - ref_min[axis]) <= tol[axis], '%s: %s min %.4f, reference %.4f' % (
+            link,
+            name,
+            lo[axis],
+            ref_min[axis],
+        )
+        assert abs(hi[axis] - ref_max[axis]) <= tol[axis], '%s: %s max %.4f, reference %.4f' % (
+            link,
+            name,
+            hi[axis],
+            ref_max[axis],
+        )
 
 
 def test_triangle_count(mesh):
@@ -91,8 +100,12 @@ def test_outward_normals(mesh):
 
 
 def test_stl_round_trip(tmp_path):
-    tri = np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]],
-                    [[0, 0, 0], [0, 0, 1], [1, 0, 0]]], dtype=float) * 0.01
+    tri = (
+        np.array(
+            [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [0, 0, 1], [1, 0, 0]]], dtype=float
+        )
+        * 0.01
+    )
     path = str(tmp_path / 'two.STL')
     write_binary_stl(path, tri, 'test header')
     with open(path, 'rb') as f:
@@ -107,12 +120,12 @@ def test_stl_round_trip(tmp_path):
 
 def test_committed_meshes_match_generator(tmp_path):
     out = tmp_path / 'meshes'
-    subprocess.run([sys.executable, GENERATOR, str(out)], check=True,
-                   stdout=subprocess.DEVNULL)
+    subprocess.run([sys.executable, GENERATOR, str(out)], check=True, stdout=subprocess.DEVNULL)
     for link in LINKS:
         with open(mesh_path(link), 'rb') as f:
             committed = f.read()
         with open(str(out / (link + '.STL')), 'rb') as f:
             generated = f.read()
-        assert committed == generated, \
+        assert committed == generated, (
             'meshes/%s.STL differs from tools/generate_meshes.py output; rerun it' % link
+        )

@@ -1,4 +1,5 @@
 """pacer.py with a fake clock: wall_period, Pacer, RealTimeFactorMeter."""
+
 import pytest
 
 from arm1.sim.pacer import Pacer, RealTimeFactorMeter, wall_period
@@ -21,14 +22,17 @@ class FakeClock:
         self.t += dt
 
 
-@pytest.mark.parametrize('step, rtf, rate, expected', [
-    (0.001, 1.0, 1000.0, 0.001),
-    (0.001, 0.5, 1000.0, 0.002),  # real-time factor slows it
-    (0.001, 1.0, 500.0, 0.002),  # update rate slows it
-    (0.001, 2.0, 1000.0, 0.001),  # rtf above what the update rate allows: the rate wins
-    (0.001, 1.0, 0.0, 0.0),  # update rate 0: as fast as possible
-    (0.002, 1.0, 500.0, 0.002),
-])
+@pytest.mark.parametrize(
+    'step, rtf, rate, expected',
+    [
+        (0.001, 1.0, 1000.0, 0.001),
+        (0.001, 0.5, 1000.0, 0.002),  # real-time factor slows it
+        (0.001, 1.0, 500.0, 0.002),  # update rate slows it
+        (0.001, 2.0, 1000.0, 0.001),  # rtf above what the update rate allows: the rate wins
+        (0.001, 1.0, 0.0, 0.0),  # update rate 0: as fast as possible
+        (0.002, 1.0, 500.0, 0.002),
+    ],
+)
 def test_wall_period(step, rtf, rate, expected):
     assert wall_period(step, rtf, rate) == pytest.approx(expected)
 

@@ -1,4 +1,5 @@
 """control/pid.py against control_toolbox::Pid as the spec states it."""
+
 import math
 
 import pytest
@@ -102,8 +103,9 @@ def test_antiwindup_clamps_the_accumulated_error_to_i_clamp_over_i():
 
 
 def test_antiwindup_with_asymmetric_clamp():
-    pid = Pid.from_params({'p': 0.0, 'i': 4.0, 'i_clamp_min': -0.4, 'i_clamp_max': 2.0,
-                           'antiwindup': True})
+    pid = Pid.from_params(
+        {'p': 0.0, 'i': 4.0, 'i_clamp_min': -0.4, 'i_clamp_max': 2.0, 'antiwindup': True}
+    )
     for _ in range(50):
         pid.compute_command(1.0, 0.1)
     assert pid.i_error == pytest.approx(0.5)
@@ -169,5 +171,6 @@ def test_non_finite_error_gives_zero_and_does_not_poison_later_commands(bad):
 
 def test_gains_report():
     pid = Pid.from_params({'p': 1, 'i': 2, 'd': 3, 'i_clamp': 4, 'antiwindup': True})
-    assert pid.gains() == dict(p=1.0, i=2.0, d=3.0, i_clamp_max=4.0, i_clamp_min=-4.0,
-                               antiwindup=True)
+    assert pid.gains() == dict(
+        p=1.0, i=2.0, d=3.0, i_clamp_max=4.0, i_clamp_min=-4.0, antiwindup=True
+    )

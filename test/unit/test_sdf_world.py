@@ -1,9 +1,10 @@
 """physics/sdf_world.py: what a Gazebo world file gives the pybullet world."""
+
 import pytest
+from conftest import WORLD_FILE
 
 from arm1.description.limits import Limits
 from arm1.description.sdf_world import SdfError, WorldConfig, parse_world, read_world
-from conftest import WORLD_FILE
 
 
 def world(body):
@@ -25,11 +26,13 @@ def test_the_projects_world_file():
 
 
 def test_physics_block_and_gravity():
-    cfg = parse_world(world("""
+    cfg = parse_world(
+        world("""
         <gravity>0 0 -1.62</gravity>
         <physics name="p" type="ode"><max_step_size>0.002</max_step_size>
           <real_time_factor>0.5</real_time_factor>
-          <real_time_update_rate>0</real_time_update_rate></physics>"""))
+          <real_time_update_rate>0</real_time_update_rate></physics>""")
+    )
     assert (cfg.max_step_size, cfg.real_time_factor, cfg.real_time_update_rate) == (0.002, 0.5, 0.0)
     assert cfg.gravity == (0.0, 0.0, -1.62)
 
@@ -37,43 +40,57 @@ def test_physics_block_and_gravity():
 def test_defaults_are_gazebos():
     cfg = parse_world(world(''))
     d = WorldConfig()
-    assert (cfg.max_step_size, cfg.real_time_factor, cfg.real_time_update_rate) == (0.001, 1.0, 1000.0)
+    assert (cfg.max_step_size, cfg.real_time_factor, cfg.real_time_update_rate) == (
+        0.001,
+        1.0,
+        1000.0,
+    )
     assert cfg.gravity == d.gravity == (0.0, 0.0, -9.8)
     assert cfg.models == [] and cfg.skipped == []
 
 
 def test_include_is_skipped_with_its_name_or_uri():
-    cfg = parse_world(world("""
+    cfg = parse_world(
+        world("""
         <include><uri>model://sun</uri></include>
-        <include><uri>model://table</uri><name>my_table</name></include>"""))
+        <include><uri>model://table</uri><name>my_table</name></include>""")
+    )
     assert [n for n, _ in cfg.skipped] == ['model://sun', 'my_table']
     assert all('cannot fetch' in why for _, why in cfg.skipped)
 
 
 def test_static_primitive_models_are_built_and_poses_added():
-    cfg = parse_world(world("""
+    cfg = parse_world(
+        world("""
       <model name="block"><static>true</static><pose>1 2 0 0 0 0</pose>
         <link name="l"><pose>0 0 0.5 0 0 0</pose>
           <collision name="c"><pose>0.1 0 0 0 0 0</pose>
             <geometry><box><size>1 2 3</size></box></geometry></collision>
-          <collision name="c2"><geometry><sphere><radius>0.2</radius></sphere></geometry></collision>
+          <collision name="c2"><geometry><sphere><radius>0.2</radius></sphere></geometry>
+          </collision>
           <collision name="c3"><geometry><cylinder><radius>0.1</radius><length>0.4</length>
             </cylinder></geometry></collision>
-        </link></model>"""))
+        </link></model>""")
+    )
     m = cfg.models[0]
     assert m.name == 'block' and m.pose == (1.0, 2.0, 0.0, 0.0, 0.0, 0.0)
     assert [(s.kind, s.size) for s in m.shapes] == [
-        ('box', (1.0, 2.0, 3.0)), ('sphere', (0.2,)), ('cylinder', (0.1, 0.4))]
+        ('box', (1.0, 2.0, 3.0)),
+        ('sphere', (0.2,)),
+        ('cylinder', (0.1, 0.4)),
+    ]
     assert m.shapes[0].pose[:3] == pytest.approx((0.1, 0.0, 0.5))
 
 
 def test_unbuildable_models_are_skipped_with_a_reason():
-    cfg = parse_world(world("""
+    cfg = parse_world(
+        world("""
       <model name="dynamic_box"><link name="l"><collision name="c">
         <geometry><box><size>1 1 1</size></box></geometry></collision></link></model>
       <model name="meshy"><static>1</static><link name="l"><collision name="c">
         <geometry><mesh><uri>model://x/m.dae</uri></mesh></geometry></collision></link></model>
-      <model name="ghost"><static>true</static><link name="l"/></model>"""))
+      <model name="ghost"><static>true</static><link name="l"/></model>""")
+    )
     assert cfg.models == []
     reasons = dict(cfg.skipped)
     assert 'static' in reasons['dynamic_box']
@@ -93,11 +110,14 @@ def test_missing_world_element():
         parse_world('<sdf version="1.6"><model name="m"/></sdf>', 'm.sdf')
 
 
-@pytest.mark.parametrize('body, culprit', [
-    ('<gravity>0 0</gravity>', 'gravity'),
-    ('<physics><max_step_size>fast</max_step_size></physics>', 'max_step_size'),
-    ('<physics><max_step_size>0</max_step_size></physics>', 'max_step_size'),
-])
+@pytest.mark.parametrize(
+    'body, culprit',
+    [
+        ('<gravity>0 0</gravity>', 'gravity'),
+        ('<physics><max_step_size>fast</max_step_size></physics>', 'max_step_size'),
+        ('<physics><max_step_size>0</max_step_size></physics>', 'max_step_size'),
+    ],
+)
 def test_bad_numbers_name_the_element(body, culprit):
     with pytest.raises(SdfError, match=culprit):
         parse_world(world(body), 'w.world')
@@ -114,9 +134,14 @@ def limits_plugin(body, filename='libarm1_limits.so'):
 
 
 def test_limits_plugin_sets_the_worlds_limits_over_the_defaults():
-    cfg = parse_world(world(limits_plugin(
-        '<camera_pixels>100000000</camera_pixels><models> 5 </models>'
-        '<sensor_update_rate>2000.5</sensor_update_rate>')))
+    cfg = parse_world(
+        world(
+            limits_plugin(
+                '<camera_pixels>100000000</camera_pixels><models> 5 </models>'
+                '<sensor_update_rate>2000.5</sensor_update_rate>'
+            )
+        )
+    )
     assert cfg.limits.camera_pixels == 100000000
     assert cfg.limits.models == 5
     assert cfg.limits.sensor_update_rate == 2000.5
@@ -131,13 +156,16 @@ def test_without_the_plugin_the_limits_are_the_defaults():
     assert parse_world(world(other)).limits == Limits()
 
 
-@pytest.mark.parametrize('body, words', [
-    ('<camera_pixels>many</camera_pixels>', ['camera_pixels', "'many'", 'not a number']),
-    ('<camera_pixels>-1</camera_pixels>', ['camera_pixels', 'positive']),
-    ('<models>inf</models>', ['models', 'positive']),
-    ('<camera_pxels>1</camera_pxels>', ['unknown limit', 'camera_pxels', 'camera_pixels']),
-    ('<models>1</models><models>2</models>', ['models', 'given twice']),
-])
+@pytest.mark.parametrize(
+    'body, words',
+    [
+        ('<camera_pixels>many</camera_pixels>', ['camera_pixels', "'many'", 'not a number']),
+        ('<camera_pixels>-1</camera_pixels>', ['camera_pixels', 'positive']),
+        ('<models>inf</models>', ['models', 'positive']),
+        ('<camera_pxels>1</camera_pxels>', ['unknown limit', 'camera_pxels', 'camera_pixels']),
+        ('<models>1</models><models>2</models>', ['models', 'given twice']),
+    ],
+)
 def test_bad_limits_name_the_file_and_the_limit(body, words):
     with pytest.raises(SdfError) as exc:
         parse_world(world(limits_plugin(body)), 'mine.world')
@@ -147,8 +175,10 @@ def test_bad_limits_name_the_file_and_the_limit(body, words):
 
 
 def test_world_file_with_a_dtd_is_refused():
-    doc = ('<?xml version="1.0"?><!DOCTYPE sdf [<!ENTITY a "aaaaaaaaaa">'
-           '<!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">]>' + world('<gravity>&b;</gravity>'))
+    doc = (
+        '<?xml version="1.0"?><!DOCTYPE sdf [<!ENTITY a "aaaaaaaaaa">'
+        '<!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">]>' + world('<gravity>&b;</gravity>')
+    )
     with pytest.raises(SdfError) as exc:
         parse_world(doc, 'laughs.world')
     assert 'laughs.world' in str(exc.value) and 'DOCTYPE' in str(exc.value)

@@ -1,5 +1,5 @@
 """Hostile documents and meshes cost bounded time and memory and get a clear refusal (no ROS)."""
-import os
+
 import resource
 import struct
 import time
@@ -9,13 +9,17 @@ import pytest
 from arm1.description import safe_xml
 from arm1.description.limits import LimitError, Limits
 from arm1.description.mesh_limits import MeshError, count_triangles
-from arm1.physics.stl import write_binary_stl
 from arm1.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
+from arm1.physics.stl import write_binary_stl
 
-LAUGHS = ('<?xml version="1.0"?><!DOCTYPE robot [<!ENTITY lol "lol">'
-          + ''.join('<!ENTITY lol%d "%s">' % (i, ('&lol%s;' % (i - 1 if i > 1 else '')) * 10)
-                    for i in range(1, 10))
-          + ']><robot name="r"><link name="&lol9;"/></robot>')
+LAUGHS = (
+    '<?xml version="1.0"?><!DOCTYPE robot [<!ENTITY lol "lol">'
+    + ''.join(
+        '<!ENTITY lol%d "%s">' % (i, ('&lol%s;' % (i - 1 if i > 1 else '')) * 10)
+        for i in range(1, 10)
+    )
+    + ']><robot name="r"><link name="&lol9;"/></robot>'
+)
 
 
 def refused(fn, *args):
@@ -38,11 +42,14 @@ def test_billion_laughs_is_refused_at_once():
     assert took < 0.5 and max_rss_mb() - before < 50
 
 
-@pytest.mark.parametrize('doc', [
-    '<!DOCTYPE robot [<!ENTITY x SYSTEM "file:///etc/passwd">]><robot name="&x;"/>',
-    '<!DOCTYPE robot SYSTEM "file:///etc/passwd"><robot name="r"><link name="a"/></robot>',
-    '<!DOCTYPE robot [<!ENTITY % p SYSTEM "http://127.0.0.1:9/x.dtd"> %p;]><robot/>',
-])
+@pytest.mark.parametrize(
+    'doc',
+    [
+        '<!DOCTYPE robot [<!ENTITY x SYSTEM "file:///etc/passwd">]><robot name="&x;"/>',
+        '<!DOCTYPE robot SYSTEM "file:///etc/passwd"><robot name="r"><link name="a"/></robot>',
+        '<!DOCTYPE robot [<!ENTITY % p SYSTEM "http://127.0.0.1:9/x.dtd"> %p;]><robot/>',
+    ],
+)
 def test_external_entities_are_refused_without_reading_them(doc):
     msg, took = refused(parse_urdf, doc)
     assert 'document type declaration' in msg and 'root:' not in msg
@@ -97,16 +104,25 @@ def test_description_bytes_counts_utf8_bytes_not_characters():
 
 
 def test_malformed_documents_are_refused_quickly():
-    for doc in ('', '<robot', '<robot name="r"><link name="a"></robot>', '\x00<robot/>',
-                '<robot name="r"/><robot/>', b'\xff\xfe<\x00r\x00', '<robot name="\ud800"/>'):
+    for doc in (
+        '',
+        '<robot',
+        '<robot name="r"><link name="a"></robot>',
+        '\x00<robot/>',
+        '<robot name="r"/><robot/>',
+        b'\xff\xfe<\x00r\x00',
+        '<robot name="\ud800"/>',
+    ):
         msg, took = refused(parse_urdf, doc)
         assert 'robot description' in msg and took < 0.5
 
 
 # ----------------------------------------------------------------------------- meshes
 def robot_with_mesh(uri):
-    return ('<robot name="r"><link name="shell"><visual><geometry><mesh filename="%s"/>'
-            '</geometry></visual></link></robot>' % uri)
+    return (
+        '<robot name="r"><link name="shell"><visual><geometry><mesh filename="%s"/>'
+        '</geometry></visual></link></robot>' % uri
+    )
 
 
 def finder(root):
@@ -114,14 +130,17 @@ def finder(root):
         if name == 'pkg':
             return str(root)
         raise LookupError(name)
+
     return find
 
 
 def test_stl_triangles_binary_and_ascii(tmp_path):
     write_binary_stl(str(tmp_path / 'b.stl'), [[(0, 0, 0), (1, 0, 0), (0, 1, 0)]] * 7)
     assert count_triangles(str(tmp_path / 'b.stl')) == 7
-    facet = 'facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n' \
-            'endloop\nendfacet\n'
+    facet = (
+        'facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n'
+        'endloop\nendfacet\n'
+    )
     (tmp_path / 'a.STL').write_text('solid x\n' + facet * 5 + 'endsolid x\n')
     assert count_triangles(str(tmp_path / 'a.STL')) == 5
 
@@ -136,16 +155,18 @@ def test_binary_stl_that_starts_with_solid_is_read_as_binary(tmp_path):
 
 def test_stl_whose_header_lies_is_refused(tmp_path):
     path = tmp_path / 'lie.stl'
-    path.write_bytes(b'\0' * 80 + struct.pack('<I', 10 ** 9) + b'\0' * 50)
+    path.write_bytes(b'\0' * 80 + struct.pack('<I', 10**9) + b'\0' * 50)
     with pytest.raises(MeshError, match='neither a binary STL'):
         count_triangles(str(path))
 
 
 def test_obj_faces_are_counted_as_fans(tmp_path):
     path = tmp_path / 'm.obj'
-    path.write_text('# comment f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n'
-                    'f 1 2 3\n  f 1/1/1 2/2/2 3/3/3 4/4/4\r\nf\t1 2 3 4 5\nf 1 2\nf \nvt 0 0\n'
-                    'f 1 2 3')  # last line without newline
+    path.write_text(
+        '# comment f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n'
+        'f 1 2 3\n  f 1/1/1 2/2/2 3/3/3 4/4/4\r\nf\t1 2 3 4 5\nf 1 2\nf \nvt 0 0\n'
+        'f 1 2 3'
+    )  # last line without newline
     assert count_triangles(str(path)) == 1 + 2 + 3 + 1
 
 
@@ -196,8 +217,7 @@ def test_package_uri_climbing_out_is_refused_without_its_contents(tmp_path):
     pkg.mkdir()
     secret = tmp_path / 'secret.obj'
     secret.write_text('top-secret-words\n')
-    msg, _ = refused(resolve_mesh_uris, robot_with_mesh('package://pkg/../secret.obj'),
-                     finder(pkg))
+    msg, _ = refused(resolve_mesh_uris, robot_with_mesh('package://pkg/../secret.obj'), finder(pkg))
     assert "leaves package 'pkg'" in msg and 'top-secret' not in msg
 
 
@@ -206,10 +226,11 @@ def test_mesh_that_fails_to_parse_is_named_but_never_quoted(tmp_path):
     pkg.mkdir()
     (pkg / 'bad.dae').write_text('<COLLADA>root:x:0:0:top-secret<p>1 2</COLLADA>')
     (pkg / 'bad.stl').write_text('root:x:0:0:top-secret\n' * 3)
-    for name, words in (('bad.dae', 'not well-formed XML (line 1): mismatched tag'),
-                        ('bad.stl', 'neither a binary STL')):
-        msg, _ = refused(resolve_mesh_uris, robot_with_mesh('package://pkg/' + name),
-                         finder(pkg))
+    for name, words in (
+        ('bad.dae', 'not well-formed XML (line 1): mismatched tag'),
+        ('bad.stl', 'neither a binary STL'),
+    ):
+        msg, _ = refused(resolve_mesh_uris, robot_with_mesh('package://pkg/' + name), finder(pkg))
         assert words in msg and 'top-secret' not in msg and "'shell'" in msg
 
 
@@ -217,7 +238,7 @@ def test_huge_mesh_is_refused_by_size_before_it_is_read(tmp_path):
     pkg = tmp_path / 'pkg'
     pkg.mkdir()
     with open(str(pkg / 'huge.stl'), 'wb') as f:
-        f.truncate(2 * 1024 ** 3)  # sparse: 2 GiB on paper, nothing on disk
+        f.truncate(2 * 1024**3)  # sparse: 2 GiB on paper, nothing on disk
     start = time.monotonic()
     with pytest.raises(LimitError) as exc:
         resolve_mesh_uris(robot_with_mesh('package://pkg/huge.stl'), finder(pkg))
@@ -231,8 +252,9 @@ def test_obj_over_the_triangle_limit_says_counting_stopped(tmp_path):
     pkg.mkdir()
     (pkg / 'many.obj').write_bytes(b'f 1 2 3\n' * 300_000)
     with pytest.raises(LimitError) as exc:
-        resolve_mesh_uris(robot_with_mesh('package://pkg/many.obj'), finder(pkg),
-                          Limits(mesh_triangles=1000))
+        resolve_mesh_uris(
+            robot_with_mesh('package://pkg/many.obj'), finder(pkg), Limits(mesh_triangles=1000)
+        )
     msg = str(exc.value)
     assert "link 'shell': mesh 'package://pkg/many.obj' (counted until past the limit)" in msg
     assert 'over the limit of 1000' in msg and '~limits/mesh_triangles' in msg

@@ -1,23 +1,26 @@
 """Simulation's guards (issues 12 and 15): models without joints are ordinary models, names are
 only names, requests are checked whole, and deleting a model releases everything it brought."""
+
 import copy
 import glob
 import math
 import os
 
 import pytest
+from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, pump_switch
 
 from arm1.control.controller_manager import ControllerManager
 from arm1.control.switching import SwitchRequest
 from arm1.description.limits import Limits
 from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.sim.simulation import Simulation, SpawnError
-from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, pump_switch
 
 CRATE = '<robot name="crate">%s</robot>' % box_link('crate')
-FIXED_ONLY = ('<robot name="table">%s%s<joint name="top_joint" type="fixed"><parent link="legs"/>'
-              '<child link="top"/><origin xyz="0 0 0.1"/></joint></robot>'
-              % (box_link('legs'), box_link('top')))
+FIXED_ONLY = (
+    '<robot name="table">%s%s<joint name="top_joint" type="fixed"><parent link="legs"/>'
+    '<child link="top"/><origin xyz="0 0 0.1"/></joint></robot>'
+    % (box_link('legs'), box_link('top'))
+)
 
 
 @pytest.fixture
@@ -49,23 +52,29 @@ def test_a_model_without_movable_joints_steps_reports_state_and_resets(sim, xml)
 def test_a_controlled_model_without_actuated_joints_gets_an_idle_controller_manager(sim):
     ros = FakeRos({})
     xml = '<robot name="crate">%s%s</robot>' % (box_link('crate'), control_plugin('/crate'))
-    model = sim.spawn_urdf('crate', xml, controller_manager_factory=lambda hw, ns:
-                           ControllerManager(hw, ros.node_handle, ns))
+    model = sim.spawn_urdf(
+        'crate',
+        xml,
+        controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+    )
     assert model.hw.joint_names() == []
     run(sim, 50)
 
 
-@pytest.mark.parametrize('name, rule', [
-    ('/tmp/arm1-guard/x', 'not a path'),
-    ('../../x', 'not a path'),
-    ('a' * 5000, 'over the limit of 255'),
-    ('', 'empty'),
-    (' padded', 'white space'),
-    ('bad\nname', 'control character'),
-    ('scoped::name', "'::'"),
-    ('__model__', 'reserved'),
-    ('world', 'reserved'),
-])
+@pytest.mark.parametrize(
+    'name, rule',
+    [
+        ('/tmp/arm1-guard/x', 'not a path'),
+        ('../../x', 'not a path'),
+        ('a' * 5000, 'over the limit of 255'),
+        ('', 'empty'),
+        (' padded', 'white space'),
+        ('bad\nname', 'control character'),
+        ('scoped::name', "'::'"),
+        ('__model__', 'reserved'),
+        ('world', 'reserved'),
+    ],
+)
 def test_a_model_name_is_only_a_name(sim, name, rule):
     with pytest.raises(SpawnError, match=rule.replace('(', r'\(')):
         sim.spawn_urdf(name, CRATE)
@@ -97,8 +106,10 @@ def test_models_per_world_and_description_size_are_bounded():
         s.close()
 
 
-@pytest.mark.parametrize('position, orientation', [
-    ((math.nan, 0, 0), (0, 0, 0, 1)), ((0, 0, 0), (0, math.inf, 0, 1)), ((0, 0), (0, 0, 0, 1))])
+@pytest.mark.parametrize(
+    'position, orientation',
+    [((math.nan, 0, 0), (0, 0, 0, 1)), ((0, 0, 0), (0, math.inf, 0, 1)), ((0, 0), (0, 0, 0, 1))],
+)
 def test_a_non_finite_pose_is_refused(sim, position, orientation):
     with pytest.raises(SpawnError, match='pose'):
         sim.spawn_urdf('crate', CRATE, position=position, orientation=orientation)
@@ -121,8 +132,9 @@ class Plugin:
         self.down += 1
 
 
-def test_delete_releases_controllers_plugins_and_the_name(sim, arm1_urdf, controllers_params,
-                                                          find_package):
+def test_delete_releases_controllers_plugins_and_the_name(
+    sim, arm1_urdf, controllers_params, find_package
+):
     ros = FakeRos(copy.deepcopy(controllers_params))
     plugins = []
 
@@ -131,9 +143,13 @@ def test_delete_releases_controllers_plugins_and_the_name(sim, arm1_urdf, contro
         model.plugins.append(plugins[-1])
 
     def spawn():
-        return sim.spawn_urdf('arm1', arm1_urdf, find_package=find_package, attach=attach,
-                              controller_manager_factory=lambda hw, ns: ControllerManager(
-                                  hw, ros.node_handle, ns))
+        return sim.spawn_urdf(
+            'arm1',
+            arm1_urdf,
+            find_package=find_package,
+            attach=attach,
+            controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+        )
 
     for _ in range(3):
         model = spawn()
@@ -161,11 +177,15 @@ def test_a_spawn_that_fails_in_its_plugins_leaves_nothing_behind(sim, arm1_urdf,
 
 
 def test_a_switch_waiting_when_its_model_is_deleted_fails_instead_of_hanging(
-        sim, arm1_urdf, controllers_params, find_package):
+    sim, arm1_urdf, controllers_params, find_package
+):
     ros = FakeRos(copy.deepcopy(controllers_params))
-    model = sim.spawn_urdf('arm1', arm1_urdf, find_package=find_package,
-                           controller_manager_factory=lambda hw, ns: ControllerManager(
-                               hw, ros.node_handle, ns))
+    model = sim.spawn_urdf(
+        'arm1',
+        arm1_urdf,
+        find_package=find_package,
+        controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+    )
     cm = model.controller_manager
     cm.load_controller('joint1_position_controller')
     waiter = SwitchRequest(cm, ['joint1_position_controller'])
@@ -175,10 +195,12 @@ def test_a_switch_waiting_when_its_model_is_deleted_fails_instead_of_hanging(
     assert waiter.wait(2.0) is False
 
 
-OFFSET_INERTIA = ('<robot name="plank"><link name="plank"><inertial><origin xyz="0.2 0 0"/>'
-                  '<mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" '
-                  'iyz="0"/></inertial><collision><geometry><box size="0.5 0.1 0.02"/></geometry>'
-                  '</collision></link></robot>')
+OFFSET_INERTIA = (
+    '<robot name="plank"><link name="plank"><inertial><origin xyz="0.2 0 0"/>'
+    '<mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" '
+    'iyz="0"/></inertial><collision><geometry><box size="0.5 0.1 0.02"/></geometry>'
+    '</collision></link></robot>'
+)
 
 
 def test_a_base_link_with_an_offset_centre_of_mass_is_posed_and_reset_by_its_frame():

@@ -1,4 +1,6 @@
-"""make soak's judging and report: the goals' verdicts, per-minute rows, the BENCHMARKS.md section."""
+"""make soak's judging and report: the goals' verdicts, per-minute rows, the BENCHMARKS.md
+section."""
+
 import pytest
 
 from arm1.bench import soak
@@ -10,12 +12,24 @@ def samples(minutes=5.0, rtf=1.0, rss0=100.0, rss_growth=0.0, stall=None, step=2
     while t <= 60 * minutes:
         lost = stall[1] if stall and abs(t - stall[0]) < step / 2 else 0.0
         sim += 0.0 if t == 0 else rtf * step - lost
-        out.append({'t': t, 'clock_wall': 1000.0 + t, 'sim': sim,
-                    'joint_states': int(50 * (sim - 10.0)), 'images': int(30 * (sim - 10.0)),
-                    'images_late': 0, 'world_rss_mb': rss0 * (1 + rss_growth * t / (60 * minutes)),
-                    'render_rss_mb': 160.0, 'world_threads': 20, 'world_cpu_s': 0.15 * t,
-                    'render_cpu_s': 0.6 * t, 'session_cpu_s': t, 'machine_busy_s': 1.2 * t,
-                    'load1': 1.0})
+        out.append(
+            {
+                't': t,
+                'clock_wall': 1000.0 + t,
+                'sim': sim,
+                'joint_states': int(50 * (sim - 10.0)),
+                'images': int(30 * (sim - 10.0)),
+                'images_late': 0,
+                'world_rss_mb': rss0 * (1 + rss_growth * t / (60 * minutes)),
+                'render_rss_mb': 160.0,
+                'world_threads': 20,
+                'world_cpu_s': 0.15 * t,
+                'render_cpu_s': 0.6 * t,
+                'session_cpu_s': t,
+                'machine_busy_s': 1.2 * t,
+                'load1': 1.0,
+            }
+        )
         t += step
     return out
 
@@ -75,8 +89,25 @@ def test_section_replaces_the_previous_one_and_keeps_the_rest(tmp_path):
 
 def test_markdown_names_goals_and_other_load():
     data = samples(minutes=3)
-    result = {'figures': soak.judge(data, 60), 'minutes': soak.minute_rows(data),
-              'minutes_asked': 3, 'machine': {'date': 'today', 'cpu': 'cpu', 'cores': 2}}
+    result = {
+        'figures': soak.judge(data, 60),
+        'minutes': soak.minute_rows(data),
+        'minutes_asked': 3,
+        'machine': {'date': 'today', 'cpu': 'cpu', 'cores': 2},
+    }
     text = soak.markdown(result)
     assert '| real-time factor after the warm-up | 1.00000 | 1 ± 0.001 | met |' in text
     assert 'Other work ran on the machine' in text
+
+
+def test_markdown_explains_stalls_and_skipped_frames_only_when_there_are_some():
+    def text(data):
+        return soak.markdown({'figures': soak.judge(data, 60), 'minutes': soak.minute_rows(data),
+                              'minutes_asked': 3, 'machine': {'date': 'd', 'cpu': 'c', 'cores': 2}})
+    smooth = samples(minutes=3)
+    assert 'falls behind in steps' not in text(smooth) and 'skipped' not in text(smooth)
+    stalled = samples(minutes=3, stall=(150.0, 0.3))
+    for s in stalled:
+        s['images'] = int(s['images'] * 0.8)  # a fifth of the frames skipped
+    assert '1 of 2 minutes lost more than 50 ms' in text(stalled)
+    assert 'Images arrive at 24.0 Hz of sim time, not 30' in text(stalled)

@@ -1,4 +1,5 @@
 """tuning/metrics.py and tuning/recorded.py on synthetic responses with known figures."""
+
 import math
 
 import pytest
@@ -15,11 +16,13 @@ def first_order(tau, size=0.5, start=0.1, duration=3.0, dt=DT):
 
 
 def second_order(zeta, wn, size=1.0, duration=6.0, dt=DT):
-    wd = wn * math.sqrt(1 - zeta ** 2)
+    wd = wn * math.sqrt(1 - zeta**2)
     phi = math.acos(zeta)
     ts = [k * dt for k in range(int(duration / dt) + 1)]
-    return ts, [size * (1 - math.exp(-zeta * wn * t) / math.sqrt(1 - zeta ** 2)
-                        * math.sin(wd * t + phi)) for t in ts]
+    return ts, [
+        size * (1 - math.exp(-zeta * wn * t) / math.sqrt(1 - zeta**2) * math.sin(wd * t + phi))
+        for t in ts
+    ]
 
 
 def test_first_order_rise_and_settling_time_are_the_textbook_ones():
@@ -48,7 +51,7 @@ def test_second_order_overshoot_and_settling(zeta):
     wn = 10.0
     ts, xs = second_order(zeta, wn)
     m = step_metrics(ts, xs, target=1.0)
-    expected = 100 * math.exp(-math.pi * zeta / math.sqrt(1 - zeta ** 2))
+    expected = 100 * math.exp(-math.pi * zeta / math.sqrt(1 - zeta**2))
     assert m.overshoot == pytest.approx(expected, rel=1e-3)
     # independent settling time: the last sample outside the band, found by brute force
     last_out = max(t for t, x in zip(ts, xs) if abs(x - 1.0) > 0.02)
@@ -117,7 +120,7 @@ def test_recorded_steps_match_the_dense_metrics_at_50_hz():
     samples = [(1.0 + t, x) for t, x in zip(ts, xs)][::20]  # joint_states at 50 Hz
     samples = [(0.0, 0.2), (0.5, 0.2)] + samples
     commands = [(0.0, 0.2), (0.99, 0.2), (1.0, 0.6)]
-    (t_step, m), = recorded_steps(commands, samples, lower=-1, upper=1)
+    ((t_step, m),) = recorded_steps(commands, samples, lower=-1, upper=1)
     assert t_step == 1.0
     assert m.rise_time == pytest.approx(tau * math.log(9), abs=0.01)
     assert m.settling_time == pytest.approx(tau * math.log(50), abs=0.01)
@@ -126,5 +129,5 @@ def test_recorded_steps_match_the_dense_metrics_at_50_hz():
 
 def test_recorded_targets_are_clamped_to_the_joint_limits():
     samples = [(k * 0.02, min(1.0, k * 0.02)) for k in range(200)]
-    (t, m), = recorded_steps([(0.0, 0.0), (0.001, 5.0)], samples, lower=-1.0, upper=1.0)
+    ((t, m),) = recorded_steps([(0.0, 0.0), (0.001, 5.0)], samples, lower=-1.0, upper=1.0)
     assert m.target == 1.0

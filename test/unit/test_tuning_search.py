@@ -3,11 +3,13 @@
 Small search budgets keep these to seconds; the real one (``rosrun arm1 tune
 --search``) tries 14 generations of 16 gain sets.
 """
+
 import io
 import math
 import os
 
 import yaml
+from conftest import REPO_ROOT
 
 from arm1.tuning import cli
 from arm1.tuning.inputs import Setup, parse_pose
@@ -17,7 +19,6 @@ from arm1.tuning.save import with_gains
 from arm1.tuning.search import UNSTEADY, Evaluator, GainSearch, SearchSpace, score
 from arm1.tuning.session import measure_all
 from arm1.tuning.steps import StepRig
-from conftest import REPO_ROOT
 
 NAMES = lambda joints: {j: '%s_position_controller' % j for j in joints}  # noqa: E731
 
@@ -49,9 +50,17 @@ def search_arm1(arm1_urdf, params, tuned, generations, population):
         joints, seed = probe.joints, {j: dict(g) for j, g in probe.gains.items()}
         effort = {j: probe.hw.handles[j].limits.effort for j in joints}
         probe.close()
-        search = GainSearch(evaluator, tuned or joints, seed, effort, setup.protocol,
-                            setup.criteria, generations=generations, population=population,
-                            seed=0)
+        search = GainSearch(
+            evaluator,
+            tuned or joints,
+            seed,
+            effort,
+            setup.protocol,
+            setup.criteria,
+            generations=generations,
+            population=population,
+            seed=0,
+        )
         found = search.run()
     finally:
         evaluator.close()
@@ -79,14 +88,15 @@ def test_search_result_holds_up_in_an_independent_run(arm1_urdf, controllers_par
     assert sum(b[1] for b in before.values()) > sum(a[1] for a in after.values())
 
 
-def test_search_meets_its_criteria_for_joint1_in_an_independent_run(arm1_urdf,
-                                                                     controllers_params):
+def test_search_meets_its_criteria_for_joint1_in_an_independent_run(arm1_urdf, controllers_params):
     setup, search, found, seed, joints = search_arm1(
-        arm1_urdf, controllers_params, ['joint1'], 4, 8)
+        arm1_urdf, controllers_params, ['joint1'], 4, 8
+    )
     for k in (0, 1):  # from both start poses
         assert search.set_results[('joint1', k)][0], search.set_results[('joint1', k)][3]
-    assert {j: found[j] for j in joints if j != 'joint1'} == \
-        {j: seed[j] for j in joints if j != 'joint1'}  # only the tuned joint's gains change
+    assert {j: found[j] for j in joints if j != 'joint1'} == {
+        j: seed[j] for j in joints if j != 'joint1'
+    }  # only the tuned joint's gains change
     params = with_gains(controllers_params, '/arm1', NAMES(joints), found)
     check = StepRig(arm1_urdf, params, setup.world, find)
     try:
@@ -119,12 +129,27 @@ def test_score_ranks_overshoot_before_shaking():
 
 
 def test_gain_coordinates_round_trip_and_stay_in_the_space():
-    seed = {'joint1': {'p': 1.0, 'i': 0.0, 'd': 0.002, 'i_clamp_max': 0.0, 'i_clamp_min': 0.0,
-                       'antiwindup': False},
-            'joint2': {'p': 7.0, 'i': 3.0, 'd': 0.01, 'i_clamp_max': 0.08, 'i_clamp_min': -0.08,
-                       'antiwindup': True}}
-    search = GainSearch(None, ['joint2', 'joint1'], seed, {'joint1': 1.0, 'joint2': 2.0},
-                        None, space=SearchSpace())
+    seed = {
+        'joint1': {
+            'p': 1.0,
+            'i': 0.0,
+            'd': 0.002,
+            'i_clamp_max': 0.0,
+            'i_clamp_min': 0.0,
+            'antiwindup': False,
+        },
+        'joint2': {
+            'p': 7.0,
+            'i': 3.0,
+            'd': 0.01,
+            'i_clamp_max': 0.08,
+            'i_clamp_min': -0.08,
+            'antiwindup': True,
+        },
+    }
+    search = GainSearch(
+        None, ['joint2', 'joint1'], seed, {'joint1': 1.0, 'joint2': 2.0}, None, space=SearchSpace()
+    )
     x = search._encode('joint2', seed['joint2']) + search._encode('joint1', seed['joint1'])
     g = search._decode(x)
     assert g['joint2'] == dict(seed['joint2'], antiwindup=True)
@@ -139,16 +164,34 @@ def test_gain_coordinates_round_trip_and_stay_in_the_space():
 def test_tune_command_prints_metrics_snippet_and_plots(tmp_path):
     out = io.StringIO()
     save = os.path.join(str(tmp_path), 'tuned.yaml')
-    rc = cli.main(['--search', '--generations', '1', '--population', '4', '--joints', 'joint1',
-                   '--hold', '1.0', '--plot', str(tmp_path), '--save', save], out=out)
+    rc = cli.main(
+        [
+            '--search',
+            '--generations',
+            '1',
+            '--population',
+            '4',
+            '--joints',
+            'joint1',
+            '--hold',
+            '1.0',
+            '--plot',
+            str(tmp_path),
+            '--save',
+            save,
+        ],
+        out=out,
+    )
     text = out.getvalue()
     assert rc == 0, text
     assert 'current gains' in text and 'found gains' in text
     assert 'joint1   out' in text and 'overshoot' in text
     assert '  joint1_position_controller:\n' in text and '    pid: {p: ' in text
     saved = yaml.safe_load(open(save))
-    assert saved['arm1']['joint1_position_controller']['type'] == \
-        'effort_controllers/JointPositionController'
+    assert (
+        saved['arm1']['joint1_position_controller']['type']
+        == 'effort_controllers/JointPositionController'
+    )
     assert saved['arm1']['joint_state_controller']['publish_rate'] == 50
     for name in ('joint1.png', 'overview.png'):
         assert os.path.getsize(os.path.join(str(tmp_path), name)) > 10000
@@ -166,8 +209,10 @@ def test_shipped_tuned_gains_do_not_shake_where_the_seeds_do(arm1_urdf, controll
             results[name] = measure_all(rig, rig.joints, setup.protocol)
         finally:
             rig.close()
-    verdicts = {name: [verdict(run, setup.criteria) for runs in by_pose for run in runs.values()]
-                for name, by_pose in results.items()}
+    verdicts = {
+        name: [verdict(run, setup.criteria) for runs in by_pose for run in runs.values()]
+        for name, by_pose in results.items()
+    }
     assert len(verdicts['tuned']) == 8  # four joints, two start poses
     for v in verdicts['tuned']:
         assert v == 'ok' or v.startswith('does not shake, but overshoot'), v
@@ -184,7 +229,9 @@ def test_poses_parse_and_bad_ones_are_named():
     setup = Setup(cli.parse_args(['--pose', 'joint2=0.9,joint3=-0.2', '--pose', 'joint2=1.2']))
     assert [v.start for v in setup.protocol.variants()] == [
         {'joint1': 0.0, 'joint2': 1.0, 'joint3': 0.0, 'joint4': 0.0},
-        {'joint2': 0.9, 'joint3': -0.2}, {'joint2': 1.2}]
+        {'joint2': 0.9, 'joint3': -0.2},
+        {'joint2': 1.2},
+    ]
     assert Setup(cli.parse_args(['--pose', 'none'])).protocol.variants()[1:] == []
     for bad in ('joint2', 'joint2=up', '=0.3'):
         try:
@@ -203,6 +250,7 @@ def test_a_pose_naming_an_unknown_joint_is_refused(capsys):
 class CannedEvaluator:
     """Evaluator stand-in: a run settles in 0.1 s with 1 % overshoot when p >= 1, and
     never settles otherwise; records which (joint, p, start pose) it was asked to run."""
+
     workers = 1
 
     def __init__(self):
@@ -214,8 +262,9 @@ class CannedEvaluator:
             self.asked.append((joint, gains[joint]['p'], protocol.start.get('joint2')))
             settle = 0.1 if gains[joint]['p'] >= 1.0 else math.inf
             overshoot = self.overshoot(gains[joint]['p'])
-            out.append(([metrics(overshoot, settle, 1e-6), metrics(overshoot, settle, 1e-6)],
-                        0.0, 0.0))
+            out.append(
+                ([metrics(overshoot, settle, 1e-6), metrics(overshoot, settle, 1e-6)], 0.0, 0.0)
+            )
         return out
 
     def overshoot(self, p):
@@ -224,9 +273,16 @@ class CannedEvaluator:
 
 def test_racing_runs_the_second_pose_only_for_steady_or_best_sets():
     from arm1.tuning.steps import Protocol
+
     protocol = Protocol({'joint2': 1.0}, poses=[{'joint2': 0.6}])
-    base = {'p': 1.0, 'i': 0.0, 'd': 0.01, 'i_clamp_max': 0.05, 'i_clamp_min': -0.05,
-            'antiwindup': True}
+    base = {
+        'p': 1.0,
+        'i': 0.0,
+        'd': 0.01,
+        'i_clamp_max': 0.05,
+        'i_clamp_min': -0.05,
+        'antiwindup': True,
+    }
     fake = CannedEvaluator()
     search = GainSearch(fake, ['joint1'], {'joint1': base}, {'joint1': 1.0}, protocol)
     sets = [{'joint1': dict(base, p=p)} for p in (0.1, 0.2, 0.3, 2.0, 0.4)]
@@ -244,9 +300,16 @@ def test_racing_tries_a_steady_set_at_the_second_pose_however_far_it_overshoots(
     """Steady is settled and still, whatever the overshoot: a set with 150 % overshoot that
     settles scores above UNSTEADY, yet it must not be dropped as if it shook."""
     from arm1.tuning.steps import Protocol
+
     protocol = Protocol({'joint2': 1.0}, poses=[{'joint2': 0.6}])
-    base = {'p': 1.0, 'i': 0.0, 'd': 0.01, 'i_clamp_max': 0.05, 'i_clamp_min': -0.05,
-            'antiwindup': True}
+    base = {
+        'p': 1.0,
+        'i': 0.0,
+        'd': 0.01,
+        'i_clamp_max': 0.05,
+        'i_clamp_min': -0.05,
+        'antiwindup': True,
+    }
     fake = CannedEvaluator()
     fake.overshoot = lambda p: 150.0 if p == 1.5 else 1.0
     search = GainSearch(fake, ['joint1'], {'joint1': base}, {'joint1': 1.0}, protocol)

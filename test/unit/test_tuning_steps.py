@@ -1,17 +1,18 @@
 """The tuner's step runs on arm1 (tuning/steps.py, local_ros.py), live gains in the
 controller, the state topic's fields, and metrics from a recorded run (rosbag)."""
+
 import os
 
 import pytest
+from conftest import JPC, MIXED_URDF, WORLD_FILE, FakeRobot
 
 from arm1.control.joint_position_controller import JointPositionController
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.robot_hw_sim import DefaultRobotHWSim
-from arm1.tuning.save import with_gains
 from arm1.tuning.local_ros import LocalRos
 from arm1.tuning.metrics import worst
+from arm1.tuning.save import with_gains
 from arm1.tuning.steps import ARM1_START, Protocol, StepRig, yaml_pid
-from conftest import JPC, MIXED_URDF, WORLD_FILE, FakeRobot
 
 SHORT = Protocol(dict(ARM1_START), step=0.3, settle=0.2, hold=1.0)
 
@@ -24,6 +25,7 @@ def rig(arm1_urdf, controllers_params):
         if pkg == 'arm1':
             return REPO_ROOT
         raise LookupError(pkg)
+
     r = StepRig(arm1_urdf, controllers_params, WORLD_FILE, find)
     yield r
     r.close()
@@ -68,16 +70,16 @@ def test_serve_config_is_offered_by_node_handles_that_have_it():
 
     class Nh(LocalRos):
         pass
+
     ros = LocalRos({'ns': {'c': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 2.0}}}})
     nh = ros.node_handle('/ns/c')
     nh.serve_config = lambda ns, type_name, current, cb: served.append((ns, type_name, current, cb))
     hw = DefaultRobotHWSim(parse_urdf(MIXED_URDF), FakeRobot(list(parse_urdf(MIXED_URDF).joints)))
     c = JointPositionController()
     c.init(hw, ros.node_handle('/ns'), nh)
-    (ns, type_name, current, cb), = served
+    ((ns, type_name, current, cb),) = served
     assert (ns, type_name) == ('pid', 'arm1/Pid')
-    assert current == dict(p=2.0, i=0.0, d=0.0, i_clamp_max=0.0, i_clamp_min=-0.0,
-                           antiwindup=False)
+    assert current == dict(p=2.0, i=0.0, d=0.0, i_clamp_max=0.0, i_clamp_min=-0.0, antiwindup=False)
     assert cb({'p': 5.0})['p'] == 5.0
 
 
@@ -98,8 +100,12 @@ def test_state_fields_match_the_controller_internals(rig):
             assert s['set_point'] == 1.1 and s['error'] == c.pid.p_error
             assert s['process_value'] == pytest.approx(1.1 - c.pid.p_error)
             assert s['command'] == c.pid.cmd and s['time_step'] == pytest.approx(0.001)
-            assert (s['p'], s['i'], s['d'], s['i_clamp']) == (c.pid.p, c.pid.i, c.pid.d,
-                                                              c.pid.i_max)
+            assert (s['p'], s['i'], s['d'], s['i_clamp']) == (
+                c.pid.p,
+                c.pid.i,
+                c.pid.d,
+                c.pid.i_max,
+            )
     stamps = [s['stamp'] for s in log[-3:]]
     assert [b - a for a, b in zip(stamps, stamps[1:])] == [10 * rig.sim.step_ns] * 2
 
@@ -133,9 +139,11 @@ def test_seed_gains_overshoot(rig):
 def test_yaml_snippet_round_trips(controllers_params):
     g = dict(p=2.0, i=0.5, d=0.001, i_clamp_max=0.05, i_clamp_min=-0.05, antiwindup=True)
     assert yaml_pid(g) == {'p': 2.0, 'i': 0.5, 'd': 0.001, 'i_clamp': 0.05, 'antiwindup': True}
-    params = with_gains(controllers_params, '/arm1', {'joint2': 'joint2_position_controller'},
-                        {'joint2': g})
+    params = with_gains(
+        controllers_params, '/arm1', {'joint2': 'joint2_position_controller'}, {'joint2': g}
+    )
     from arm1.control.pid import Pid
+
     assert Pid.from_params(params['arm1']['joint2_position_controller']['pid']).gains() == g
     assert controllers_params['arm1']['joint2_position_controller']['pid']['p'] == 1
 
@@ -146,16 +154,21 @@ def test_metrics_from_a_rosbag_match_the_simulated_step(rig, tmp_path):
     import rospy
     from sensor_msgs.msg import JointState
     from std_msgs.msg import Float64
+
     from arm1.ros.bag import read_run
     from arm1.tuning.recorded import recorded_steps
+
     run = rig.run('joint4', SHORT)
     path = os.path.join(str(tmp_path), 'run.bag')
     with rosbag.Bag(path, 'w') as bag:
         t0 = 100.0
         bag.write('/arm1/joint4_position_controller/command', Float64(0.0), rospy.Time(t0))
         for name, t_step, _, target in run.steps:
-            bag.write('/arm1/joint4_position_controller/command', Float64(target),
-                      rospy.Time.from_sec(t0 + t_step))
+            bag.write(
+                '/arm1/joint4_position_controller/command',
+                Float64(target),
+                rospy.Time.from_sec(t0 + t_step),
+            )
         for t, x in list(zip(run.times, run.positions))[19::20]:  # 50 Hz
             m = JointState(name=['joint1', 'joint4'], position=[0.0, x])
             m.header.stamp = rospy.Time.from_sec(t0 + t)

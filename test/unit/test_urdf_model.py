@@ -1,18 +1,21 @@
 """physics/urdf_model.py: what the simulator reads from a URDF."""
+
 import os
 import xml.etree.ElementTree as ET
 
 import pytest
+from conftest import MIXED_URDF, REPO_ROOT, box_link, control_plugin, transmission
 
 from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE
 from arm1.description.limits import LimitError, Limits
-from arm1.physics.stl import write_binary_stl
 from arm1.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
-from conftest import MIXED_URDF, REPO_ROOT, box_link, control_plugin, transmission
+from arm1.physics.stl import write_binary_stl
 
 ARM1_LIMITS = {
-    'joint1': (-1.57, 1.57), 'joint2': (0.01, 1.57),
-    'joint3': (-1.0, 1.57), 'joint4': (-0.8, 1.57),
+    'joint1': (-1.57, 1.57),
+    'joint2': (0.01, 1.57),
+    'joint3': (-1.0, 1.57),
+    'joint4': (-0.8, 1.57),
 }
 
 
@@ -20,9 +23,13 @@ def robot(body, name='r'):
     return '<robot name="%s">%s</robot>' % (name, body)
 
 
-TWO_LINKS = box_link('a') + box_link('b') + """
+TWO_LINKS = (
+    box_link('a')
+    + box_link('b')
+    + """
   <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
     <limit lower="-1" upper="2" effort="3" velocity="4"/></joint>"""
+)
 
 
 # ----------------------------------------------------------------------------- arm1
@@ -47,10 +54,15 @@ def test_arm1_joints_and_limits(arm1_urdf):
 def test_arm1_transmissions_and_plugin(arm1_urdf):
     m = parse_urdf(arm1_urdf)
     assert [(t.name, t.joint) for t in m.transmissions] == [
-        ('tran1', 'joint1'), ('tran2', 'joint2'), ('tran3', 'joint3'), ('tran4', 'joint4')]
+        ('tran1', 'joint1'),
+        ('tran2', 'joint2'),
+        ('tran3', 'joint3'),
+        ('tran4', 'joint4'),
+    ]
     assert all(t.interfaces == [EFFORT_JOINT_INTERFACE] for t in m.transmissions)
     assert [(j.name, i) for j, i in m.actuated_joints()] == [
-        ('joint%d' % n, EFFORT_JOINT_INTERFACE) for n in range(1, 5)]
+        ('joint%d' % n, EFFORT_JOINT_INTERFACE) for n in range(1, 5)
+    ]
     assert m.control_plugin.robot_namespace == '/arm1'
     assert m.control_plugin.robot_sim_type == 'gazebo_ros_control/DefaultRobotHWSim'
     assert m.control_plugin.control_period is None
@@ -61,7 +73,7 @@ def test_arm1_gazebo_reference_tags(arm1_urdf):
     assert m.gazebo_refs['base_link'] == {'material': 'Gazebo/White'}
     assert m.gazebo_refs['link1'] == {'mu1': '0.2', 'mu2': '0.2', 'material': 'Gazebo/Orange'}
     assert {'base_link', 'link1', 'link2', 'link3', 'link4'} <= set(m.gazebo_refs)
-    assert all(m.gazebo_refs[l]['material'].startswith('Gazebo/') for l in m.gazebo_refs)
+    assert all(m.gazebo_refs[link]['material'].startswith('Gazebo/') for link in m.gazebo_refs)
 
 
 # ----------------------------------------------------------------------------- other robots
@@ -93,8 +105,12 @@ def test_transmission_naming_an_unknown_joint():
 
 
 def test_transmission_on_a_fixed_joint_is_not_actuated():
-    body = box_link('a') + box_link('b') + """
+    body = (
+        box_link('a')
+        + box_link('b')
+        + """
       <joint name="f" type="fixed"><parent link="a"/><child link="b"/></joint>"""
+    )
     assert parse_urdf(robot(body + transmission('f'))).actuated_joints() == []
 
 
@@ -106,21 +122,29 @@ def test_no_plugin_and_plugin_without_namespace():
 
 
 def test_control_period():
-    xml = robot(TWO_LINKS + """<gazebo><plugin name="x" filename="libgazebo_ros_control.so">
+    xml = robot(
+        TWO_LINKS
+        + """<gazebo><plugin name="x" filename="libgazebo_ros_control.so">
         <robotNamespace>/ns</robotNamespace><controlPeriod>0.002</controlPeriod>
-        </plugin></gazebo>""")
+        </plugin></gazebo>"""
+    )
     assert parse_urdf(xml).control_plugin.control_period == pytest.approx(0.002)
 
 
 def test_other_plugins_are_not_the_control_plugin():
-    xml = robot(TWO_LINKS + """<gazebo><plugin name="cam" filename="libgazebo_ros_camera.so">
-        <robotNamespace>/cam</robotNamespace></plugin></gazebo>""")
+    xml = robot(
+        TWO_LINKS
+        + """<gazebo><plugin name="cam" filename="libgazebo_ros_camera.so">
+        <robotNamespace>/cam</robotNamespace></plugin></gazebo>"""
+    )
     assert parse_urdf(xml).control_plugin is None
 
 
 def test_sensors_in_reference_blocks_are_collected():
-    xml = robot(TWO_LINKS + '<gazebo reference="b"><sensor name="cam" type="camera"/>'
-                '<mu1>0.5</mu1></gazebo>')
+    xml = robot(
+        TWO_LINKS + '<gazebo reference="b"><sensor name="cam" type="camera"/>'
+        '<mu1>0.5</mu1></gazebo>'
+    )
     m = parse_urdf(xml)
     assert [(link, s.get('name')) for link, s in m.sensors] == [('b', 'cam')]
     assert m.gazebo_refs['b'] == {'mu1': '0.5'}
@@ -167,9 +191,11 @@ def test_joint_without_child():
 
 # ----------------------------------------------------------------------------- meshes
 def mesh_robot(uri, link='shell'):
-    return robot('<link name="%s"><visual><geometry><mesh filename="%s"/></geometry></visual>'
-                 '<collision><geometry><mesh filename="%s" scale="1 1 1"/></geometry></collision>'
-                 '</link>' % (link, uri, uri))
+    return robot(
+        '<link name="%s"><visual><geometry><mesh filename="%s"/></geometry></visual>'
+        '<collision><geometry><mesh filename="%s" scale="1 1 1"/></geometry></collision>'
+        '</link>' % (link, uri, uri)
+    )
 
 
 def test_package_uri_resolves_through_find_package(find_package):
@@ -204,8 +230,10 @@ def test_unknown_package_names_the_package_and_the_link(find_package):
 def test_arm1_meshes_all_resolve(arm1_urdf, find_package):
     out = resolve_mesh_uris(arm1_urdf, find_package)
     files = {m.get('filename') for m in ET.fromstring(out).iter('mesh')}
-    assert {os.path.join(REPO_ROOT, 'meshes', n + '.STL')
-            for n in ('base_link', 'link1', 'link2', 'link3', 'link4')} <= files
+    assert {
+        os.path.join(REPO_ROOT, 'meshes', n + '.STL')
+        for n in ('base_link', 'link1', 'link2', 'link3', 'link4')
+    } <= files
     assert all(os.path.isabs(f) and os.path.isfile(f) for f in files)
 
 
@@ -213,8 +241,11 @@ def test_arm1_meshes_all_resolve(arm1_urdf, find_package):
 def chain(links):
     """A robot of ``links`` box links joined in a chain by fixed joints."""
     body = ''.join('<link name="l%d"/>' % i for i in range(links))
-    body += ''.join('<joint name="j%d" type="fixed"><parent link="l%d"/><child link="l%d"/>'
-                    '</joint>' % (i, i, i + 1) for i in range(links - 1))
+    body += ''.join(
+        '<joint name="j%d" type="fixed"><parent link="l%d"/><child link="l%d"/>'
+        '</joint>' % (i, i, i + 1)
+        for i in range(links - 1)
+    )
     return robot(body, 'chain')
 
 
@@ -234,11 +265,16 @@ def test_joints_over_the_limit_are_refused():
 
 
 def test_long_link_and_joint_names_are_refused_shortened():
-    for kind, body in (('link', box_link('a' * 300)),
-                       ('joint', TWO_LINKS.replace('name="j"', 'name="%s"' % ('j' * 300)))):
+    for kind, body in (
+        ('link', box_link('a' * 300)),
+        ('joint', TWO_LINKS.replace('name="j"', 'name="%s"' % ('j' * 300))),
+    ):
         if kind == 'link':
-            body += box_link('b') + '<joint name="j" type="fixed"><parent link="%s"/>' \
-                '<child link="b"/></joint>' % ('a' * 300)
+            body += box_link(
+                'b'
+            ) + '<joint name="j" type="fixed"><parent link="%s"/><child link="b"/></joint>' % (
+                'a' * 300
+            )
         with pytest.raises(LimitError) as exc:
             parse_urdf(robot(body))
         msg = str(exc.value)
@@ -278,14 +314,18 @@ def package(tmp_path):
         if name == 'pkg':
             return str(pkg)
         raise LookupError(name)
+
     return pkg, find
 
 
-@pytest.mark.parametrize('uri', [
-    'package://pkg/../secret.stl',
-    'package://pkg/meshes/../../secret.stl',
-    'package://pkg//etc/secret.stl',  # an absolute part would replace the package directory
-])
+@pytest.mark.parametrize(
+    'uri',
+    [
+        'package://pkg/../secret.stl',
+        'package://pkg/meshes/../../secret.stl',
+        'package://pkg//etc/secret.stl',  # an absolute part would replace the package directory
+    ],
+)
 def test_package_uri_that_climbs_out_is_refused(package, uri):
     pkg, find = package
     with pytest.raises(UrdfError) as exc:
@@ -298,7 +338,8 @@ def test_package_uri_with_dotdot_inside_the_package_resolves(package):
     pkg, find = package
     out = resolve_mesh_uris(mesh_robot('package://pkg/meshes/../meshes/m.stl'), find)
     assert {m.get('filename') for m in ET.fromstring(out).iter('mesh')} == {
-        str(pkg / 'meshes' / 'm.stl')}
+        str(pkg / 'meshes' / 'm.stl')
+    }
 
 
 def test_symlink_the_package_holds_is_followed(package, tmp_path):
@@ -307,7 +348,8 @@ def test_symlink_the_package_holds_is_followed(package, tmp_path):
     os.symlink(str(tmp_path / 'secret.stl'), str(pkg / 'meshes' / 'linked.stl'))
     out = resolve_mesh_uris(mesh_robot('package://pkg/meshes/linked.stl'), find)
     assert {m.get('filename') for m in ET.fromstring(out).iter('mesh')} == {
-        str(pkg / 'meshes' / 'linked.stl')}
+        str(pkg / 'meshes' / 'linked.stl')
+    }
 
 
 @pytest.mark.parametrize('name', ['passwd', 'm.png', 'm.stl.txt'])
@@ -338,8 +380,9 @@ def test_mesh_over_the_byte_limit_is_refused(package):
     pkg, find = package
     size = os.path.getsize(str(pkg / 'meshes' / 'm.stl'))
     with pytest.raises(LimitError) as exc:
-        resolve_mesh_uris(mesh_robot('package://pkg/meshes/m.stl'), find,
-                          Limits(mesh_bytes=size - 1))
+        resolve_mesh_uris(
+            mesh_robot('package://pkg/meshes/m.stl'), find, Limits(mesh_bytes=size - 1)
+        )
     assert 'mesh bytes is %d, over the limit of %d' % (size, size - 1) in str(exc.value)
     assert 'package://pkg/meshes/m.stl' in str(exc.value)
 
@@ -348,8 +391,7 @@ def test_mesh_over_the_triangle_limit_is_refused(package):
     pkg, find = package
     resolve_mesh_uris(mesh_robot('package://pkg/meshes/m.stl'), find, Limits(mesh_triangles=12))
     with pytest.raises(LimitError, match='mesh triangles is 12, over the limit of 11'):
-        resolve_mesh_uris(mesh_robot('package://pkg/meshes/m.stl'), find,
-                          Limits(mesh_triangles=11))
+        resolve_mesh_uris(mesh_robot('package://pkg/meshes/m.stl'), find, Limits(mesh_triangles=11))
 
 
 def test_broken_mesh_is_refused_without_its_contents(package):

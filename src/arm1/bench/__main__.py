@@ -3,6 +3,7 @@
 Writes bench/results.json, the table in BENCHMARKS.md and bench/bench.png.
 ``--quick`` runs each measurement once and briefly (the smoke test in ``make test``).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -23,8 +24,14 @@ from .report import write_markdown, write_plot
 # (key, worker kind, worker args, runs, quick args, quick runs)
 PLAN = [
     ('bare', 'bare', ['--seconds', '5'], 3, ['--seconds', '1.5'], 1),
-    ('standin_1', 'standin', ['--seconds', '5', '--arms', '1'], 3,
-     ['--seconds', '1.5', '--arms', '1'], 1),
+    (
+        'standin_1',
+        'standin',
+        ['--seconds', '5', '--arms', '1'],
+        3,
+        ['--seconds', '1.5', '--arms', '1'],
+        1,
+    ),
     ('standin_2', 'standin', ['--seconds', '4', '--arms', '2'], 3, None, 0),
     ('standin_4', 'standin', ['--seconds', '4', '--arms', '4'], 3, None, 0),
     ('standin_8', 'standin', ['--seconds', '4', '--arms', '8'], 3, None, 0),
@@ -39,12 +46,20 @@ NEEDS_MASTER = {'standin', 'latency'}  # they run the world in-process against a
 
 
 def run_worker(kind: str, args: List[str], env: Dict[str, str]) -> Dict[str, Any]:
-    proc = subprocess.run([sys.executable, '-m', 'arm1.bench.workers', kind] + args, env=env,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=600)
+    proc = subprocess.run(
+        [sys.executable, '-m', 'arm1.bench.workers', kind] + args,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        timeout=600,
+    )
     lines = [ln for ln in proc.stdout.splitlines() if ln.startswith('{')]
     if proc.returncode != 0 or not lines:
-        raise RuntimeError('bench worker %s %s failed (exit %d):\n%s' % (
-            kind, ' '.join(args), proc.returncode, proc.stderr[-3000:]))
+        raise RuntimeError(
+            'bench worker %s %s failed (exit %d):\n%s'
+            % (kind, ' '.join(args), proc.returncode, proc.stderr[-3000:])
+        )
     return json.loads(lines[-1])
 
 
@@ -63,8 +78,12 @@ def summarise(samples: List[Dict[str, Any]]) -> Dict[str, Dict[str, float]]:
     for key in samples[0]:
         values = [s[key] for s in samples if isinstance(s.get(key), (int, float))]
         if values and not isinstance(samples[0][key], bool):
-            out[key] = {'median': statistics.median(values), 'min': min(values),
-                        'max': max(values), 'runs': len(values)}
+            out[key] = {
+                'median': statistics.median(values),
+                'min': min(values),
+                'max': max(values),
+                'runs': len(values),
+            }
     return out
 
 
@@ -73,8 +92,11 @@ Raw = Dict[str, List[Dict[str, Any]]]  # key -> each run's result
 
 
 def plan_for(quick: bool) -> Plan:
-    return [(key, kind, (qargs if quick else full) or [], qruns if quick else runs)
-            for key, kind, full, runs, qargs, qruns in PLAN if not (quick and not qruns)]
+    return [
+        (key, kind, (qargs if quick else full) or [], qruns if quick else runs)
+        for key, kind, full, runs, qargs, qruns in PLAN
+        if not (quick and not qruns)
+    ]
 
 
 def run_plan(plan: Plan) -> Raw:
@@ -83,8 +105,9 @@ def run_plan(plan: Plan) -> Raw:
     master = start_master(env)
     raw: Raw = {}
     try:
-        with tqdm(total=sum(runs for *_, runs in plan), unit='run', file=sys.stdout,
-                  dynamic_ncols=True) as bar:
+        with tqdm(
+            total=sum(runs for *_, runs in plan), unit='run', file=sys.stdout, dynamic_ncols=True
+        ) as bar:
             for key, kind, wargs, runs in plan:
                 for k in range(runs):
                     bar.set_description('%s run %d/%d' % (key, k + 1, runs))

@@ -1,4 +1,5 @@
 """arm1 as every measurement runs it: its world, URDF and controllers, in a namespace."""
+
 from __future__ import annotations
 
 from ..paths import repo_path
@@ -14,6 +15,8 @@ STEP = 0.001  # s, the world file's max_step_size
 def arm1_urdf(namespace: str = '/arm1') -> str:
     """arm1's URDF (xacro expanded) with its control plugin in ``namespace``."""
     from ..ros.xacro_bridge import expand
+
     xml = expand(XACRO)
-    return xml.replace('<robotNamespace>/arm1</robotNamespace>',
-                       '<robotNamespace>%s</robotNamespace>' % namespace)
+    return xml.replace(
+        '<robotNamespace>/arm1</robotNamespace>', '<robotNamespace>%s</robotNamespace>' % namespace
+    )

@@ -1,4 +1,5 @@
 """The floor at real time: the world node's CPU with no robot, and the CPU of one wake-up."""
+
 from __future__ import annotations
 
 import threading
@@ -14,6 +15,7 @@ def idle_world(seconds: float) -> Dict[str, float]:
     import rospy
 
     from ..ros.world_node import parse_args, start_world
+
     n = 2000
     c0 = time.process_time()
     for _ in range(n):
@@ -24,6 +26,7 @@ def idle_world(seconds: float) -> Dict[str, float]:
     def stop_later() -> None:
         time.sleep(seconds)
         rospy.signal_shutdown('measured')
+
     threading.Thread(target=stop_later, daemon=True).start()
     w0, c0 = time.perf_counter(), time.process_time()
     node.run(pacer)

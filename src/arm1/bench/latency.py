@@ -1,5 +1,6 @@
 """Command latency: wall time from publishing a joint1 target to the first control update
 that uses it, the publisher in a process of its own."""
+
 from __future__ import annotations
 
 import json
@@ -17,6 +18,7 @@ from .standin import start_standin
 def latency(commands: int, rate: float = 100.0) -> Dict[str, Any]:
     """``commands`` distinct targets at ``rate`` Hz: p50, p99 and max latency (ms)."""
     import rospy
+
     node, pacer = start_standin(1, None)
     manager = node.sim.models['arm1'].controller_manager
     ctrl = manager.controller('joint1_position_controller') if manager else None
@@ -30,28 +32,47 @@ def latency(commands: int, rate: float = 100.0) -> Dict[str, Any]:
         if target not in applied:
             applied[target] = time.time()
         original(*args)
+
     ctrl.update = update  # type: ignore[method-assign,assignment]  # instrumented for this measurement
     out: Dict[str, List[Tuple[float, float]]] = {}
 
     def publish() -> None:
         time.sleep(2.0)  # controllers started, connections made
-        proc = subprocess.run([sys.executable, '-m', 'arm1.bench.workers', 'publisher',
-                               '--count', str(commands), '--rate', str(rate)],
-                              stdout=subprocess.PIPE, text=True)
+        proc = subprocess.run(
+            [
+                sys.executable,
+                '-m',
+                'arm1.bench.workers',
+                'publisher',
+                '--count',
+                str(commands),
+                '--rate',
+                str(rate),
+            ],
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         out['sent'] = json.loads(proc.stdout.strip().splitlines()[-1])
         time.sleep(0.2)
         rospy.signal_shutdown('measured')
+
     threading.Thread(target=publish, daemon=True).start()
     node.run(pacer)
     lat = sorted((applied[v] - t) * 1e3 for v, t in out['sent'] if v in applied)
-    return {'n': len(lat), 'sent': len(out['sent']), 'p50_ms': percentile(lat, 50),
-            'p99_ms': percentile(lat, 99), 'max_ms': lat[-1] if lat else float('nan')}
+    return {
+        'n': len(lat),
+        'sent': len(out['sent']),
+        'p50_ms': percentile(lat, 50),
+        'p99_ms': percentile(lat, 99),
+        'max_ms': lat[-1] if lat else float('nan'),
+    }
 
 
 def publisher(count: int, rate: float) -> None:
     """Publishes ``count`` distinct joint1 targets; prints [(value, wall time)]."""
     import rospy
     from std_msgs.msg import Float64
+
     rospy.init_node('bench_publisher', anonymous=True)
     pub = rospy.Publisher('/arm1/joint1_position_controller/command', Float64, queue_size=10)
     while pub.get_num_connections() == 0:

@@ -1,4 +1,5 @@
 """The real launch (``roslaunch arm1 gazebo.launch gui:=false``), watched from outside."""
+
 from __future__ import annotations
 
 import time
@@ -11,6 +12,7 @@ PROBE = '/bench_probe'
 
 def _launch_and_wait(session: Any, timeout: float = 60) -> None:
     import rospy
+
     session.roslaunch('arm1', 'gazebo.launch', 'gui:=false')
     if not session.wait_for_master(timeout):
         raise RuntimeError('master did not start')
@@ -22,6 +24,7 @@ def startup() -> Dict[str, Any]:
     import rospy
 
     from ..session.launcher import RosSession
+
     session = RosSession()
     session.activate()
     with session:
@@ -41,15 +44,21 @@ def realtime(seconds: float) -> Dict[str, float]:
     from sensor_msgs.msg import JointState
 
     from ..session.launcher import RosSession, node_pid
+
     session = RosSession()
     session.activate()
     with session:
         _launch_and_wait(session)
         clock, stamps = [], []
-        rospy.Subscriber('/clock', Clock, lambda m: clock.append((time.perf_counter(),
-                                                                  m.clock.to_sec())))
-        rospy.Subscriber('/arm1/joint_states', JointState,
-                         lambda m: stamps.append(m.header.stamp.to_sec()), queue_size=100)
+        rospy.Subscriber(
+            '/clock', Clock, lambda m: clock.append((time.perf_counter(), m.clock.to_sec()))
+        )
+        rospy.Subscriber(
+            '/arm1/joint_states',
+            JointState,
+            lambda m: stamps.append(m.header.stamp.to_sec()),
+            queue_size=100,
+        )
         rospy.wait_for_message('/arm1/joint_states', JointState, timeout=60)
         time.sleep(2.0)
         world = [node_pid('/gazebo', caller=PROBE)]
@@ -61,7 +70,10 @@ def realtime(seconds: float) -> Dict[str, float]:
         rss = sum(peak_rss_mb(p) for p in world)
         window = stamps[n0:n1]
         rospy.signal_shutdown('measured')
-    return {'rtf': (c1[1] - c0[1]) / (c1[0] - c0[0]),
-            'joint_states_hz': (len(window) - 1) / (window[-1] - window[0]),
-            'cpu_core_fraction': (cpu1 - cpu0) / (w1 - w0), 'peak_rss_mb': rss,
-            'seconds': w1 - w0}
+    return {
+        'rtf': (c1[1] - c0[1]) / (c1[0] - c0[0]),
+        'joint_states_hz': (len(window) - 1) / (window[-1] - window[0]),
+        'cpu_core_fraction': (cpu1 - cpu0) / (w1 - w0),
+        'peak_rss_mb': rss,
+        'seconds': w1 - w0,
+    }

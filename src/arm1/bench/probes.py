@@ -1,4 +1,5 @@
 """What a process costs (psutil), and what machine the benchmark ran on."""
+
 from __future__ import annotations
 
 import platform
@@ -34,8 +35,9 @@ def cpu_model() -> str:
     """The CPU's model name ('' if unknown); psutil does not report it."""
     try:
         with open('/proc/cpuinfo') as f:
-            return next((ln.split(':', 1)[1].strip() for ln in f
-                         if ln.startswith('model name')), '')
+            return next(
+                (ln.split(':', 1)[1].strip() for ln in f if ln.startswith('model name')), ''
+            )
     except OSError:
         return ''
 
@@ -43,8 +45,12 @@ def cpu_model() -> str:
 def machine() -> Dict[str, object]:
     """CPU, cores, Python, kernel, pybullet and date, for the report's header."""
     import pybullet
-    return {'cpu': cpu_model(), 'cores': psutil.cpu_count(), 'python': platform.python_version(),
-            'kernel': platform.release(), 'pybullet': getattr(pybullet, '__version__', '3.2.7'),
-            'date': time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}
 
-
+    return {
+        'cpu': cpu_model(),
+        'cores': psutil.cpu_count(),
+        'python': platform.python_version(),
+        'kernel': platform.release(),
+        'pybullet': getattr(pybullet, '__version__', '3.2.7'),
+        'date': time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime()),
+    }

@@ -1,4 +1,5 @@
 """The benchmark's table (BENCHMARKS.md) and plot (bench/bench.png) from results.json's data."""
+
 from __future__ import annotations
 
 import os
@@ -6,29 +7,77 @@ from typing import Any, Dict, Iterator, Optional, Tuple
 
 # (label, figure, field, goal text, check(median) -> bool or None, format)
 ROWS = [
-    ('real-time factor over the run, at factor 1', 'realtime', 'rtf', '1.00 ± 0.01',
-     lambda v: abs(v - 1.0) <= 0.01, '%.4f'),
-    ('joint_states rate in sim time (Hz)', 'realtime', 'joint_states_hz', '50 ± 0.5 %',
-     lambda v: abs(v - 50.0) <= 0.25, '%.3f'),
-    ('world CPU at real time (fraction of a core)', 'realtime', 'cpu_core_fraction', '≤ 0.10',
-     lambda v: v <= 0.10, '%.3f'),
-    ('  the floor: empty world, no robot (fraction of a core)', 'idle_world',
-     'cpu_core_fraction', '', None, '%.3f'),
-    ('  CPU of one 1 ms sleep and wake-up (µs)', 'idle_world', 'sleep_wakeup_cpu_us', '', None,
-     '%.1f'),
-    ('world peak resident memory (MB)', 'realtime', 'peak_rss_mb', '≤ 200',
-     lambda v: v <= 200, '%.0f'),
+    (
+        'real-time factor over the run, at factor 1',
+        'realtime',
+        'rtf',
+        '1.00 ± 0.01',
+        lambda v: abs(v - 1.0) <= 0.01,
+        '%.4f',
+    ),
+    (
+        'joint_states rate in sim time (Hz)',
+        'realtime',
+        'joint_states_hz',
+        '50 ± 0.5 %',
+        lambda v: abs(v - 50.0) <= 0.25,
+        '%.3f',
+    ),
+    (
+        'world CPU at real time (fraction of a core)',
+        'realtime',
+        'cpu_core_fraction',
+        '≤ 0.10',
+        lambda v: v <= 0.10,
+        '%.3f',
+    ),
+    (
+        '  the floor: empty world, no robot (fraction of a core)',
+        'idle_world',
+        'cpu_core_fraction',
+        '',
+        None,
+        '%.3f',
+    ),
+    (
+        '  CPU of one 1 ms sleep and wake-up (µs)',
+        'idle_world',
+        'sleep_wakeup_cpu_us',
+        '',
+        None,
+        '%.1f',
+    ),
+    (
+        'world peak resident memory (MB)',
+        'realtime',
+        'peak_rss_mb',
+        '≤ 200',
+        lambda v: v <= 200,
+        '%.0f',
+    ),
     ('bare pybullet loop (steps/s)', 'bare', 'steps_per_s', 'the ceiling', None, '%.0f'),
     ('stand-in top speed, 1 arm (steps/s)', 'standin_1', 'steps_per_s', '', None, '%.0f'),
     ('stand-in / bare speed ratio', 'speed_ratio', None, '≥ 0.6', lambda v: v >= 0.6, '%.2f'),
     ('stand-in top speed, 2 arms (steps/s)', 'standin_2', 'steps_per_s', '', None, '%.0f'),
     ('stand-in top speed, 4 arms (steps/s)', 'standin_4', 'steps_per_s', '', None, '%.0f'),
     ('stand-in top speed, 8 arms (steps/s)', 'standin_8', 'steps_per_s', '', None, '%.0f'),
-    ('stand-in top speed, 1 arm, camera streaming 30 Hz (steps/s)', 'standin_camera',
-     'steps_per_s', '', None, '%.0f'),
+    (
+        'stand-in top speed, 1 arm, camera streaming 30 Hz (steps/s)',
+        'standin_camera',
+        'steps_per_s',
+        '',
+        None,
+        '%.0f',
+    ),
     ('  wall time each camera frame adds (ms)', 'camera_frame_ms', None, '', None, '%.1f'),
-    ('start-up: roslaunch to first joint_states (s)', 'startup', 'startup_s', '≤ 3',
-     lambda v: v <= 3.0, '%.2f'),
+    (
+        'start-up: roslaunch to first joint_states (s)',
+        'startup',
+        'startup_s',
+        '≤ 3',
+        lambda v: v <= 3.0,
+        '%.2f',
+    ),
     ('command latency p50 (ms)', 'latency', 'p50_ms', '', None, '%.3f'),
     ('command latency p99 (ms)', 'latency', 'p99_ms', '≤ 2', lambda v: v <= 2.0, '%.3f'),
 ]
@@ -46,8 +95,11 @@ def rows(results: Results) -> Iterator[Tuple[str, str, str, str, str]]:
         if value is None:
             continue
         median = value['median']
-        spread = ('%s – %s (%d runs)' % (fmt % value['min'], fmt % value['max'], value['runs'])
-                  if 'min' in value else '')
+        spread = (
+            '%s – %s (%d runs)' % (fmt % value['min'], fmt % value['max'], value['runs'])
+            if 'min' in value
+            else ''
+        )
         verdict = '' if check is None else ('met' if check(median) else 'NOT met')
         yield label, fmt % median, spread, goal, verdict
 
@@ -62,17 +114,26 @@ def write_markdown(results: Results, path: str) -> str:
     m = results['machine']
     text = table(results)
     from .soak import existing_section
+
     soak = existing_section(path)  # make soak's section outlives a new make bench
     with open(path, 'w') as f:
-        f.write('# Benchmarks\n\n'
-                'Made by `make bench` (`python -m arm1.bench`); the raw numbers are in '
-                '`bench/results.json`, the plot in `bench/bench.png`. Every figure below comes '
-                'from one run of that command, the stand-in and the bare pybullet loop measured '
-                'side by side.\n\n'
-                'Machine: %s, %s cores, Linux %s, Python %s, pybullet %s; %s.%s\n\n'
-                % (m['cpu'] or 'unknown CPU', m['cores'], m['kernel'], m['python'], m['pybullet'],
-                   m['date'], ' **Quick run (smoke): one short run each.**' if results['quick']
-                   else ''))
+        f.write(
+            '# Benchmarks\n\n'
+            'Made by `make bench` (`python -m arm1.bench`); the raw numbers are in '
+            '`bench/results.json`, the plot in `bench/bench.png`. Every figure below comes '
+            'from one run of that command, the stand-in and the bare pybullet loop measured '
+            'side by side.\n\n'
+            'Machine: %s, %s cores, Linux %s, Python %s, pybullet %s; %s.%s\n\n'
+            % (
+                m['cpu'] or 'unknown CPU',
+                m['cores'],
+                m['kernel'],
+                m['python'],
+                m['pybullet'],
+                m['date'],
+                ' **Quick run (smoke): one short run each.**' if results['quick'] else '',
+            )
+        )
         f.write(text + '\n')
         f.write(unmet_section(results))
         f.write(profile_section(results))
@@ -88,6 +149,7 @@ def unmet_section(results: Results) -> str:
 
     def med(key: str, field: str) -> Optional[float]:
         return fig[key][field]['median'] if key in fig and field in fig[key] else None
+
     out = []
     ratio = fig.get('speed_ratio', {}).get('median')
     bare, standin = med('bare', 'steps_per_s'), med('standin_1', 'steps_per_s')
@@ -100,8 +162,9 @@ def unmet_section(results: Results) -> str:
             'and the controller manager: about %.1f µs more per joint per step in CPython than '
             'the bare loop\'s inline PD. The profile below shows Python taking most of the '
             'physics thread; joint_states and /clock cost the rest. Closing the gap '
-            'means moving the per-joint path out of Python.' % (
-                ratio, 1e6 / bare, 1e6 / standin, (1e6 / standin - 1e6 / bare) / 4))
+            'means moving the per-joint path out of Python.'
+            % (ratio, 1e6 / bare, 1e6 / standin, (1e6 / standin - 1e6 / bare) / 4)
+        )
     cpu, floor = med('realtime', 'cpu_core_fraction'), med('idle_world', 'cpu_core_fraction')
     wake = med('idle_world', 'sleep_wakeup_cpu_us')
     if cpu is not None and cpu > 0.10 and floor is not None:
@@ -115,8 +178,15 @@ def unmet_section(results: Results) -> str:
             'finds cold caches, and every /clock goes out to each subscriber. '
             'Running two steps per wake-up would cut the wake-ups but hold a command up to a '
             'step longer, against the 2 ms latency goal, so the world keeps one step per '
-            'wake-up.' % (cpu, floor, float('nan') if wake is None else wake,
-                          (cpu - floor) * 1000, 1e6 / standin if standin else float('nan')))
+            'wake-up.'
+            % (
+                cpu,
+                floor,
+                float('nan') if wake is None else wake,
+                (cpu - floor) * 1000,
+                1e6 / standin if standin else float('nan'),
+            )
+        )
     if not out:
         return ''
     return '\n## Goals not met, and why\n\n' + '\n'.join(out) + '\n'
@@ -128,12 +198,19 @@ def profile_section(results: Results) -> str:
     if not runs:
         return ''
     shares = runs[0]['profile_share']
-    lines = ['', '## Where a stand-in step goes', '',
-             'cProfile of the physics thread at top speed (1 arm). Profiling slows Python code '
-             'more than pybullet\'s C++, so Python\'s real share is somewhat smaller.', '',
-             '| part | share of the physics thread |', '|---|---|']
-    lines += ['| %s | %.0f %% |' % (k, 100 * v) for k, v in sorted(shares.items(),
-                                                                   key=lambda kv: -kv[1])]
+    lines = [
+        '',
+        '## Where a stand-in step goes',
+        '',
+        'cProfile of the physics thread at top speed (1 arm). Profiling slows Python code '
+        'more than pybullet\'s C++, so Python\'s real share is somewhat smaller.',
+        '',
+        '| part | share of the physics thread |',
+        '|---|---|',
+    ]
+    lines += [
+        '| %s | %.0f %% |' % (k, 100 * v) for k, v in sorted(shares.items(), key=lambda kv: -kv[1])
+    ]
     return '\n'.join(lines) + '\n'
 
 
@@ -163,18 +240,26 @@ METHOD = '''
 
 def write_plot(results: Results, path: str) -> None:
     import matplotlib
+
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
+
     raw = results['raw']
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     keys = [k for k in ('bare', 'standin_1', 'standin_2', 'standin_4', 'standin_8') if k in raw]
-    labels = ['bare\npybullet' if k == 'bare' else '%s arm%s' % (k[-1], '' if k[-1] == '1' else 's')
-              for k in keys]
+    labels = [
+        'bare\npybullet' if k == 'bare' else '%s arm%s' % (k[-1], '' if k[-1] == '1' else 's')
+        for k in keys
+    ]
     for x, k in enumerate(keys):
         values = [r['steps_per_s'] / 1000.0 for r in raw[k]]
         axes[0].scatter([x] * len(values), values, color='tab:blue' if k != 'bare' else 'tab:gray')
-        axes[0].bar(x, sorted(values)[len(values) // 2], alpha=0.3,
-                    color='tab:blue' if k != 'bare' else 'tab:gray')
+        axes[0].bar(
+            x,
+            sorted(values)[len(values) // 2],
+            alpha=0.3,
+            color='tab:blue' if k != 'bare' else 'tab:gray',
+        )
     axes[0].axhline(1.0, color='tab:red', lw=1, ls='--', label='real time (1 kHz step)')
     axes[0].set_xticks(range(len(keys)), labels)
     axes[0].set_ylabel('thousand steps per wall second')
@@ -183,9 +268,11 @@ def write_plot(results: Results, path: str) -> None:
     if 'realtime' in raw:
         rtf = [r['rtf'] for r in raw['realtime']]
         cpu = [r['cpu_core_fraction'] for r in raw['realtime']]
-        axes[1].bar(['real-time\nfactor', 'CPU\n(cores)'], [sorted(rtf)[len(rtf) // 2],
-                                                             sorted(cpu)[len(cpu) // 2]],
-                    color=['tab:green', 'tab:orange'])
+        axes[1].bar(
+            ['real-time\nfactor', 'CPU\n(cores)'],
+            [sorted(rtf)[len(rtf) // 2], sorted(cpu)[len(cpu) // 2]],
+            color=['tab:green', 'tab:orange'],
+        )
         axes[1].axhline(1.0, color='tab:green', lw=1, ls='--')
         axes[1].axhline(0.10, color='tab:orange', lw=1, ls='--')
         axes[1].set_title('At real time (goal lines dashed)')

@@ -1,4 +1,5 @@
 """Top speed of the stand-in: steps per wall second with real_time_update_rate 0."""
+
 from __future__ import annotations
 
 import threading
@@ -9,11 +10,13 @@ from .standin import listeners, start_standin
 from .step_profile import profile_split
 
 
-def standin(seconds: float, arms: int = 1, warmup: float = 1.0, profile: bool = False,
-            camera: bool = False) -> Dict[str, Any]:
+def standin(
+    seconds: float, arms: int = 1, warmup: float = 1.0, profile: bool = False, camera: bool = False
+) -> Dict[str, Any]:
     """Steps per wall second over ``seconds`` after ``warmup`` (with ``profile``: where the
     physics thread's time goes instead; with ``camera``: arm1's camera streaming)."""
     import rospy
+
     node, pacer = start_standin(arms, 0)
     procs = listeners(arms, camera)
     marks: List[Tuple[float, int]] = []
@@ -24,10 +27,12 @@ def standin(seconds: float, arms: int = 1, warmup: float = 1.0, profile: bool = 
         time.sleep(seconds)
         marks.append((time.perf_counter(), node.sim.steps))
         rospy.signal_shutdown('measured')
+
     threading.Thread(target=timer, daemon=True).start()
     profiler = None
     if profile:
         import cProfile
+
         profiler = cProfile.Profile()
         profiler.enable()
     try:
@@ -39,6 +44,7 @@ def standin(seconds: float, arms: int = 1, warmup: float = 1.0, profile: bool = 
             proc.terminate()
     if profiler:
         import pstats
+
         return {'profile_share': profile_split(pstats.Stats(profiler))}
     (w0, s0), (w1, s1) = marks
     return {'steps_per_s': (s1 - s0) / (w1 - w0), 'arms': arms, 'camera': camera}

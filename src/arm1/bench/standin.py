@@ -1,5 +1,6 @@
 """The world node of gzserver in this process, with N arm1s and their controllers running,
 and listeners in another process (as robot_state_publisher would be)."""
+
 from __future__ import annotations
 
 import subprocess
@@ -15,14 +16,14 @@ if TYPE_CHECKING:
     from ..sim.pacer import Pacer
 
 
-def start_standin(arms: int, real_time_update_rate: Optional[float]
-                  ) -> Tuple[WorldNode, Pacer]:
+def start_standin(arms: int, real_time_update_rate: Optional[float]) -> Tuple[WorldNode, Pacer]:
     """``(world node, pacer)``: the world file with ``arms`` arm1s, each in /armK, all five
     controllers asked to start (they do at the first update of ``node.run``)."""
     import rosparam
     import rospy
 
     from ..ros.world_node import parse_args, start_world
+
     argv = [WORLD]
     if real_time_update_rate is not None:
         argv += ['--real-time-update-rate', str(real_time_update_rate)]
@@ -53,5 +54,8 @@ def listeners(arms: int, camera: bool = False) -> List[subprocess.Popen]:
     camera, which makes the world render it."""
     topics = ['/arm%d/joint_states' % k for k in range(1, arms + 1)]
     topics += ['/rgb_camera/image_raw'] if camera else []
-    return [subprocess.Popen(['rostopic', 'hz'] + topics, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL)]
+    return [
+        subprocess.Popen(
+            ['rostopic', 'hz'] + topics, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+        )
+    ]

@@ -1,4 +1,5 @@
 """Where the physics thread's time goes: a cProfile of it bucketed into the stand-in's parts."""
+
 from __future__ import annotations
 
 import pstats
@@ -7,16 +8,28 @@ from typing import Callable, Dict, List, Tuple
 # (label, predicate on pstats' (file, function) of an entry)
 PROFILE_PARTS: List[Tuple[str, Callable[[str, str], bool]]] = [
     ('pybullet stepSimulation', lambda f, fn: 'stepSimulation' in fn),
-    ('pybullet joint read / torque write',
-     lambda f, fn: 'getJointStates' in fn or 'setJointMotorControlArray' in fn),
+    (
+        'pybullet joint read / torque write',
+        lambda f, fn: 'getJointStates' in fn or 'setJointMotorControlArray' in fn,
+    ),
     ('controllers, PID, controller manager (Python)', lambda f, fn: '/arm1/control/' in f),
-    ('hardware interface, robot, simulation step (Python)',
-     lambda f, fn: any(m in f for m in ('robot_hw_sim.py', 'physics/robot.py', 'simulation.py'))),
-    ('ROS publishing (messages, rospy, sockets)',
-     lambda f, fn: any(m in f for m in ('rospy', 'genpy', '_msgs/msg', 'node_handle.py'))
-     or 'sendall' in fn),
-    ('world loop, clock, pacing', lambda f, fn: any(m in f for m in (
-        'world_loop.py', 'sim_clock.py', 'sim_thread.py', 'pacer.py'))),
+    (
+        'hardware interface, robot, simulation step (Python)',
+        lambda f, fn: any(m in f for m in ('robot_hw_sim.py', 'physics/robot.py', 'simulation.py')),
+    ),
+    (
+        'ROS publishing (messages, rospy, sockets)',
+        lambda f, fn: (
+            any(m in f for m in ('rospy', 'genpy', '_msgs/msg', 'node_handle.py'))
+            or 'sendall' in fn
+        ),
+    ),
+    (
+        'world loop, clock, pacing',
+        lambda f, fn: any(
+            m in f for m in ('world_loop.py', 'sim_clock.py', 'sim_thread.py', 'pacer.py')
+        ),
+    ),
 ]
 OTHER = 'Python built-ins (min, max, isfinite, ...) and the rest'
 

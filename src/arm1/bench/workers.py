@@ -3,6 +3,7 @@
 It prints one JSON line. Each runs in a fresh process because a process holds one ROS
 node, and so that one measurement's threads and memory do not colour the next.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -17,8 +18,14 @@ from .launched import realtime, startup
 from .speed import standin
 
 KINDS: Dict[str, Callable[..., Any]] = {
-    'bare': bare, 'standin': standin, 'latency': latency, 'publisher': publisher,
-    'idle_world': idle_world, 'startup': startup, 'realtime': realtime}
+    'bare': bare,
+    'standin': standin,
+    'latency': latency,
+    'publisher': publisher,
+    'idle_world': idle_world,
+    'startup': startup,
+    'realtime': realtime,
+}
 
 
 def main(argv: Optional[List[str]] = None) -> int:

@@ -4,12 +4,13 @@ gazebo_ros_camera, the limits a spawned camera must keep, and the camera's optic
 ROS-free and render-free: what is parsed here is handed to the sensor manager
 (physics.sensor_manager) and, pickled, to the render processes (physics.render_process).
 """
+
 from __future__ import annotations
 
 import logging
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, List, Optional, Sequence, Tuple
+from typing import Any, Callable, List, Optional
 
 from .limits import Limits
 from .urdf_model import RobotModel, UrdfError
@@ -24,6 +25,7 @@ ENCODINGS = {'R8G8B8': ('rgb8', 3), 'B8G8R8': ('bgr8', 3), 'L8': ('mono8', 1)}
 @dataclass
 class CameraSensor:
     """One camera as the description declares it; defaults are SDF's and gazebo_ros_camera's."""
+
     name: str
     link: str
     update_rate: float = 0.0  # Hz in sim time; 0: as fast as the renderer goes
@@ -73,8 +75,9 @@ class CameraSensor:
         return "camera '%s' (%dx%d at %s)" % (self.name, self.width, self.height, rate)
 
 
-def _number(element: Any, path: str, default: float, what: str,
-            kind: Callable[[str], float] = float) -> float:
+def _number(
+    element: Any, path: str, default: float, what: str, kind: Callable[[str], float] = float
+) -> float:
     text = element.findtext(path)
     if text is None or not text.strip():
         return default
@@ -97,8 +100,9 @@ def camera_sensors(description: RobotModel, limits: Optional[Limits] = None) -> 
     limits = limits or Limits()
     out = []
     for link, sensor in description.sensors:
-        plugin = next((pl for pl in sensor.findall('plugin')
-                       if pl.get('filename') == CAMERA_PLUGIN), None)
+        plugin = next(
+            (pl for pl in sensor.findall('plugin') if pl.get('filename') == CAMERA_PLUGIN), None
+        )
         if sensor.get('type') != 'camera' or plugin is None:
             continue
         name = sensor.get('name', 'camera')
@@ -117,7 +121,8 @@ def camera_sensors(description: RobotModel, limits: Optional[Limits] = None) -> 
             raise UrdfError('%s <pose>: %r is not 6 numbers' % (what, sensor.findtext('pose')))
         d = CameraSensor(name, link)
         s = CameraSensor(
-            name, link,
+            name,
+            link,
             update_rate=_number(sensor, 'update_rate', d.update_rate, what),
             horizontal_fov=_number(cam, 'horizontal_fov', d.horizontal_fov, what),
             width=int(_number(cam, 'image/width', d.width, what, int)),
@@ -128,28 +133,37 @@ def camera_sensors(description: RobotModel, limits: Optional[Limits] = None) -> 
             pose=pose,
             camera_name=(plugin.findtext('cameraName') or '').strip(),
             image_topic_name=(plugin.findtext('imageTopicName') or d.image_topic_name).strip(),
-            camera_info_topic_name=(plugin.findtext('cameraInfoTopicName')
-                                    or d.camera_info_topic_name).strip(),
+            camera_info_topic_name=(
+                plugin.findtext('cameraInfoTopicName') or d.camera_info_topic_name
+            ).strip(),
             frame_name=(plugin.findtext('frameName') or d.frame_name).strip(),
-            robot_namespace=(plugin.findtext('robotNamespace') or '').strip())
+            robot_namespace=(plugin.findtext('robotNamespace') or '').strip(),
+        )
         if s.update_rate < 0:
-            raise UrdfError('%s <update_rate>: %g Hz is negative (0 means as fast as possible)'
-                            % (what, s.update_rate))
+            raise UrdfError(
+                '%s <update_rate>: %g Hz is negative (0 means as fast as possible)'
+                % (what, s.update_rate)
+            )
         # The plugin's own <updateRate> throttles what the sensor produces.
         throttle = _number(plugin, 'updateRate', 0.0, what)
         if throttle > 0:
             s.update_rate = min(s.update_rate, throttle) if s.update_rate > 0 else throttle
         if s.width <= 0 or s.height <= 0 or not 0 < s.horizontal_fov < math.pi:
-            raise UrdfError('%s: image %dx%d with horizontal_fov %g cannot be rendered'
-                            % (what, s.width, s.height, s.horizontal_fov))
+            raise UrdfError(
+                '%s: image %dx%d with horizontal_fov %g cannot be rendered'
+                % (what, s.width, s.height, s.horizontal_fov)
+            )
         if not 0 < s.near < s.far:
-            raise UrdfError('%s: clip near %g and far %g cannot be rendered (0 < near < far)'
-                            % (what, s.near, s.far))
+            raise UrdfError(
+                '%s: clip near %g and far %g cannot be rendered (0 < near < far)'
+                % (what, s.near, s.far)
+            )
         limits.check('camera_pixels', s.pixels, '%s (%dx%d)' % (what, s.width, s.height))
         limits.check('sensor_update_rate', s.update_rate, what)
         if s.format not in ENCODINGS:
-            log.warning('%s: image format %s is not supported, rendering R8G8B8 (rgb8)',
-                        what, s.format)
+            log.warning(
+                '%s: image format %s is not supported, rendering R8G8B8 (rgb8)', what, s.format
+            )
             s.format = 'R8G8B8'
         out.append(s)
     return out

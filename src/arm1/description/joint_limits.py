@@ -1,5 +1,6 @@
 """What a URDF says of how a joint may move and how it is driven: its <limit> and the
 hardware interface its transmission names. Control builds its joint handles on these."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -19,6 +20,7 @@ def canonical_interface(name: Optional[str]) -> str:
 @dataclass
 class JointLimits:
     """The URDF ``<limit>`` of a joint; a missing bound is None."""
+
     lower: Optional[float] = None
     upper: Optional[float] = None
     effort: Optional[float] = None

@@ -7,6 +7,7 @@ The defaults sit far above what real robots bring; a world file
 node's private parameters (``~limits/<name>``) raise or lower them. A refusal
 names the limit, the value that broke it and how to raise it.
 """
+
 from __future__ import annotations
 
 import math
@@ -33,19 +34,22 @@ class Limits:
     name_length: int = 255  # characters of a model, link, joint or namespace name
 
     @classmethod
-    def from_mapping(cls, values: Mapping[str, Any], source: str,
-                     base: Optional[Limits] = None) -> Limits:
+    def from_mapping(
+        cls, values: Mapping[str, Any], source: str, base: Optional[Limits] = None
+    ) -> Limits:
         """Limits with ``values`` over ``base`` (or the defaults); unknown names and bad values
         raise, naming ``source``."""
         if not isinstance(values, Mapping):
-            raise LimitError('%s: limits must be a mapping of name: value, not %r'
-                             % (source, values))
+            raise LimitError(
+                '%s: limits must be a mapping of name: value, not %r' % (source, values)
+            )
         known = {f.name: f for f in fields(cls)}
         out = replace(base) if base is not None else cls()
         for name, raw in values.items():
             if name not in known:
-                raise LimitError('%s: unknown limit %r; known: %s'
-                                 % (source, name, ', '.join(sorted(known))))
+                raise LimitError(
+                    '%s: unknown limit %r; known: %s' % (source, name, ', '.join(sorted(known)))
+                )
             kind = int if known[name].type == 'int' else float
             try:
                 value = float(raw)
@@ -54,8 +58,9 @@ class Limits:
             except (TypeError, ValueError):
                 raise LimitError('%s: limit %s = %r is not a number' % (source, name, raw))
             if not math.isfinite(value) or value <= 0:
-                raise LimitError('%s: limit %s = %r must be a positive number'
-                                 % (source, name, raw))
+                raise LimitError(
+                    '%s: limit %s = %r must be a positive number' % (source, name, raw)
+                )
             setattr(out, name, value)
         return out
 
@@ -66,7 +71,8 @@ class Limits:
             raise LimitError(
                 '%s: %s is %s, over the limit of %s (raise it with the world node parameter '
                 '~limits/%s or the world file plugin arm1_limits)'
-                % (what, name.replace('_', ' '), _fmt(value), _fmt(limit), name))
+                % (what, name.replace('_', ' '), _fmt(value), _fmt(limit), name)
+            )
 
 
 def _fmt(value: float) -> str:

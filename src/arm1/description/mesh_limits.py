@@ -7,13 +7,14 @@ memory stays bounded whatever their size; the caller bounds the size itself
 (``Limits.mesh_bytes``) first. Errors name the file and what is wrong with it,
 never its contents.
 """
+
 from __future__ import annotations
 
 import os
 import re
 import struct
 import xml.sax
-from typing import Any, BinaryIO, Dict, List, Optional
+from typing import Any, BinaryIO, List, Optional
 
 from defusedxml import DefusedXmlException
 from defusedxml.expatreader import create_parser
@@ -74,8 +75,10 @@ def _stl_triangles(f: BinaryIO, size: int, path: str) -> int:
         if size == _STL_HEADER + 4 + _STL_RECORD * count:
             return count  # binary, even when the header starts with 'solid'
     if not head.lstrip().startswith(b'solid'):
-        raise MeshError('%s: neither a binary STL (its size does not match the triangle count '
-                        'in its header) nor an ASCII STL' % path)
+        raise MeshError(
+            '%s: neither a binary STL (its size does not match the triangle count '
+            'in its header) nor an ASCII STL' % path
+        )
     # ASCII: one 'endfacet' per triangle; a word cut at a chunk border is caught by the overlap.
     f.seek(0)
     count, tail = 0, b''
@@ -105,7 +108,7 @@ def _obj_triangles(f: BinaryIO, stop: float) -> int:
                 total += len((chunk if end < 0 else chunk[:end]).split())
             if end < 0:
                 continue
-            long_face, chunk = None, chunk[end + 1:]
+            long_face, chunk = None, chunk[end + 1 :]
         data = carry + chunk
         cut = data.rfind(b'\n') + 1
         total += _face_triangles(data[:cut])
@@ -114,7 +117,7 @@ def _obj_triangles(f: BinaryIO, stop: float) -> int:
             start = _OBJ_FACE_START.match(carry)
             long_face = start is not None
             if start is not None:
-                total += max(0, len(carry[start.end():].split()) - 2)
+                total += max(0, len(carry[start.end() :].split()) - 2)
             carry = b''
     return total + _face_triangles(carry)
 
@@ -204,8 +207,10 @@ def _dae_triangles(f: BinaryIO, path: str, stop: float) -> int:
     except DefusedXmlException:
         raise MeshError('%s: a COLLADA file with a DTD or entities: refused' % path) from None
     except xml.sax.SAXParseException as exc:
-        raise MeshError('%s: not well-formed XML (line %d): %s'
-                        % (path, exc.getLineNumber() or 0, exc.getMessage())) from None
+        raise MeshError(
+            '%s: not well-formed XML (line %d): %s'
+            % (path, exc.getLineNumber() or 0, exc.getMessage())
+        ) from None
     except MeshError as exc:
         raise MeshError('%s: %s' % (path, exc)) from None
     return counter.triangles

@@ -6,6 +6,7 @@ top of that the tree may hold at most ``max_elements`` elements and nest at
 most ``MAX_DEPTH`` deep, so a hostile document costs bounded memory, and the
 stdlib's recursive serialiser (``ET.tostring``) cannot overflow the stack.
 """
+
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
@@ -39,11 +40,15 @@ class _BoundedTreeBuilder(ET.TreeBuilder):
         self.elements += 1
         self.depth += 1
         if self.max_elements is not None and self.elements > self.max_elements:
-            raise TooManyElements('%s has more than %d XML elements (line %d)'
-                                  % (self.what, self.max_elements, self.line()))
+            raise TooManyElements(
+                '%s has more than %d XML elements (line %d)'
+                % (self.what, self.max_elements, self.line())
+            )
         if self.depth > self.max_depth:
-            raise XmlRefused('%s nests XML elements more than %d deep (line %d)'
-                             % (self.what, self.max_depth, self.line()))
+            raise XmlRefused(
+                '%s nests XML elements more than %d deep (line %d)'
+                % (self.what, self.max_depth, self.line())
+            )
         return super().start(tag, attrs)
 
     def end(self, tag: str) -> ET.Element:
@@ -51,24 +56,31 @@ class _BoundedTreeBuilder(ET.TreeBuilder):
         return super().end(tag)
 
 
-def parse(text: Union[str, bytes], what: str, max_elements: Optional[int] = None,
-          max_depth: int = MAX_DEPTH) -> ET.Element:
+def parse(
+    text: Union[str, bytes],
+    what: str,
+    max_elements: Optional[int] = None,
+    max_depth: int = MAX_DEPTH,
+) -> ET.Element:
     """The root element of ``text``; raises XmlRefused naming ``what`` and the reason.
 
     No DTD is accepted (URDF, SDF and xacro's output have none), so no entity
     can be declared, expanded or fetched.
     """
     target = _BoundedTreeBuilder(what, max_elements, max_depth)
-    parser = DefusedXMLParser(target=target, forbid_dtd=True, forbid_entities=True,
-                              forbid_external=True)
+    parser = DefusedXMLParser(
+        target=target, forbid_dtd=True, forbid_entities=True, forbid_external=True
+    )
     target.line = lambda: parser.parser.CurrentLineNumber
     try:
         parser.feed(text)
         return parser.close()
     except DTDForbidden:
-        raise XmlRefused('%s has a document type declaration (<!DOCTYPE>): refused, since '
-                         'a DTD can declare entities that expand without bound; URDF and '
-                         'SDF need none' % what) from None
+        raise XmlRefused(
+            '%s has a document type declaration (<!DOCTYPE>): refused, since '
+            'a DTD can declare entities that expand without bound; URDF and '
+            'SDF need none' % what
+        ) from None
     except EntitiesForbidden:  # only reachable through a DTD, refused above; kept for safety
         raise XmlRefused('%s declares an XML entity: refused' % what) from None
     except ExternalReferenceForbidden:

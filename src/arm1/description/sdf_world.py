@@ -3,6 +3,7 @@
 Parsed with defusedxml (no DTD, hence no entity expansion; see safe_xml). The
 world's limits on spawned content come from the plugin LIMITS_PLUGIN.
 """
+
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
@@ -74,8 +75,11 @@ def _shape(geometry, what):
             return Shape(kind, _numbers(g.findtext('size'), 3, what + ' box size'))
         if kind == 'sphere':
             return Shape(kind, _numbers(g.findtext('radius'), 1, what + ' radius'))
-        return Shape(kind, _numbers(g.findtext('radius'), 1, what + ' radius')
-                     + _numbers(g.findtext('length'), 1, what + ' length'))
+        return Shape(
+            kind,
+            _numbers(g.findtext('radius'), 1, what + ' radius')
+            + _numbers(g.findtext('length'), 1, what + ' length'),
+        )
     return None
 
 

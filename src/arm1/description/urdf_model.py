@@ -4,6 +4,7 @@ A robot description may come from any ROS client, so it is parsed as hostile:
 defusedxml with no DTD, a bounded size and tree (safe_xml), the world's Limits
 on links, joints and names, and mesh URIs that stay where they point.
 """
+
 from __future__ import annotations
 
 import os
@@ -54,6 +55,7 @@ class Transmission:
 @dataclass
 class ControlPlugin:
     """The gazebo_ros_control ``<plugin>`` of a description."""
+
     robot_namespace: str = ''
     robot_sim_type: str = 'gazebo_ros_control/DefaultRobotHWSim'
     control_period: Optional[float] = None
@@ -76,8 +78,10 @@ class RobotModel:
         for t in self.transmissions:
             joint = self.joints.get(t.joint)
             if joint is None:
-                raise UrdfError("transmission '%s' names joint '%s', which is not in the URDF"
-                                % (t.name, t.joint))
+                raise UrdfError(
+                    "transmission '%s' names joint '%s', which is not in the URDF"
+                    % (t.name, t.joint)
+                )
             if joint.type in ACTUATED_TYPES:
                 out.append((joint, t.interfaces[0] if t.interfaces else None))
         return out
@@ -117,7 +121,8 @@ def parse_description(xml_text: Union[str, bytes], limits: Optional[Limits] = No
         raise UrdfLimitError(
             '%s: %d for each link and joint the limits allow (raise them with the world node '
             'parameters ~limits/links_per_model and ~limits/joints_per_model or the world file '
-            'plugin arm1_limits)' % (exc, ELEMENTS_PER_PART)) from None
+            'plugin arm1_limits)' % (exc, ELEMENTS_PER_PART)
+        ) from None
     except safe_xml.XmlRefused as exc:
         raise UrdfError(str(exc)) from None
 
@@ -165,11 +170,13 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
                 lower=_float(lim.get('lower', '0'), what) if jtype != 'continuous' else None,
                 upper=_float(lim.get('upper', '0'), what) if jtype != 'continuous' else None,
                 effort=_float(lim.get('effort', '0'), what),
-                velocity=_float(lim.get('velocity', '0'), what))
-        joints[name] = Joint(name, jtype or '', parent.get('link') or '', child.get('link') or '',
-                             joint_limits)
+                velocity=_float(lim.get('velocity', '0'), what),
+            )
+        joints[name] = Joint(
+            name, jtype or '', parent.get('link') or '', child.get('link') or '', joint_limits
+        )
     children = {j.child for j in joints.values()}
-    roots = [l for l in links if l not in children]
+    roots = [name for name in links if name not in children]
     if len(roots) != 1:
         raise UrdfError('robot must have exactly one root link, found %s' % roots)
     transmissions = []
@@ -189,7 +196,8 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
                     model.control_plugin = ControlPlugin(
                         (p.findtext('robotNamespace') or '').strip(),
                         (p.findtext('robotSimType') or ControlPlugin.robot_sim_type).strip(),
-                        _float(period, 'controlPeriod') if period else None)
+                        _float(period, 'controlPeriod') if period else None,
+                    )
             continue
         tags = model.gazebo_refs.setdefault(ref, {})
         for child in g:
@@ -200,8 +208,9 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
     return model
 
 
-def resolve_mesh_uris(xml_text: Union[str, bytes], find_package: Callable[[str], str],
-                      limits: Optional[Limits] = None) -> str:
+def resolve_mesh_uris(
+    xml_text: Union[str, bytes], find_package: Callable[[str], str], limits: Optional[Limits] = None
+) -> str:
     """The description with every link's mesh URI rewritten to an absolute path, each checked.
 
     ``find_package(name)`` returns a package's directory or raises LookupError.
@@ -238,34 +247,40 @@ def _mesh_path(uri: str, where: str, find_package: Callable[[str], str]) -> str:
         try:
             pkg_dir = os.path.abspath(find_package(pkg))  # abspath also collapses '..'
         except LookupError:
-            raise UrdfError("%s: package '%s' not found on the ROS package path"
-                            % (where, pkg)) from None
+            raise UrdfError(
+                "%s: package '%s' not found on the ROS package path" % (where, pkg)
+            ) from None
         path = os.path.normpath(os.path.join(pkg_dir, rel))
         if os.path.commonpath([pkg_dir, path]) != pkg_dir:
-            raise UrdfError("%s leaves package '%s': a package:// URI must name a file inside "
-                            "its package's directory" % (where, pkg))
+            raise UrdfError(
+                "%s leaves package '%s': a package:// URI must name a file inside "
+                "its package's directory" % (where, pkg)
+            )
         return path
     else:
-        raise UrdfError("%s: URI scheme '%s://' is not supported (package://, file:// or a path)"
-                        % (where, shown(scheme, 30)[1:-1]))
+        raise UrdfError(
+            "%s: URI scheme '%s://' is not supported (package://, file:// or a path)"
+            % (where, shown(scheme, 30)[1:-1])
+        )
     # as Gazebo: a path is opened as written, a relative one from the world's directory
     return path if os.path.isabs(path) else os.path.join(os.getcwd(), path)
 
 
-def _checked_mesh(uri: str, link: str, find_package: Callable[[str], str],
-                  limits: Limits) -> str:
+def _checked_mesh(uri: str, link: str, find_package: Callable[[str], str], limits: Limits) -> str:
     """The path of ``uri``'s mesh once it passed every check; UrdfError otherwise."""
     where = 'link %s: mesh %s' % (shown(link or ''), shown(uri, 200))
     path = _mesh_path(uri, where, find_package)
     kind = mesh_kind(path)
     if kind is None:
-        raise UrdfError('%s: only %s meshes (any case) are loaded'
-                        % (where, ', '.join(MESH_EXTENSIONS)))
+        raise UrdfError(
+            '%s: only %s meshes (any case) are loaded' % (where, ', '.join(MESH_EXTENSIONS))
+        )
     try:
         st = os.stat(path)
     except (FileNotFoundError, NotADirectoryError):
-        raise UrdfError("link '%s': mesh file not found: %s (from %s)"
-                        % (link, path, shown(uri, 200))) from None
+        raise UrdfError(
+            "link '%s': mesh file not found: %s (from %s)" % (link, path, shown(uri, 200))
+        ) from None
     except OSError as exc:
         raise UrdfError('%s: %s cannot be read: %s' % (where, path, exc.strerror)) from None
     if not stat.S_ISREG(st.st_mode):  # a fifo or device would block or never end

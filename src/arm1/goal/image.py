@@ -2,6 +2,7 @@
 
 ROS-free: numpy, and Pillow to write PNG files.
 """
+
 import io
 
 import numpy as np
@@ -18,7 +19,7 @@ def is_uniform(data, width, height, step):
         return False  # empty or malformed: no evidence of a blank view
     rows = np.frombuffer(data, np.uint8, count=height * step).reshape(height, step)
     bpp = step // width
-    pixels = rows[:, :width * bpp].reshape(-1, bpp)
+    pixels = rows[:, : width * bpp].reshape(-1, bpp)
     return bool((pixels == pixels[0]).all())
 
 
@@ -30,7 +31,7 @@ def png(data: bytes, width: int, height: int, step: int, encoding: str) -> bytes
     """A PNG file's bytes of a raw 8-bit image (as in sensor_msgs/Image), written by Pillow."""
     channels = PNG_TYPES[encoding]
     rows = np.frombuffer(data, np.uint8, count=height * step).reshape(height, step)
-    px = rows[:, :width * channels].reshape(height, width, channels)
+    px = rows[:, : width * channels].reshape(height, width, channels)
     if encoding.startswith('bgr'):
         px = px[:, :, [2, 1, 0, 3][:channels]]
     out = io.BytesIO()

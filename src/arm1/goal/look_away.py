@@ -15,8 +15,11 @@ class LookAwayPolicy:
 
     def joint_positions(self, positions):
         last, self._last = self._last, list(positions)
-        self.still = (last is not None and len(last) == len(self._last)
-                      and all(abs(a - b) < self.still_threshold for a, b in zip(last, self._last)))
+        self.still = (
+            last is not None
+            and len(last) == len(self._last)
+            and all(abs(a - b) < self.still_threshold for a, b in zip(last, self._last))
+        )
 
     def decide(self, uniform):
         """True if the arm should move now; the caller calls ``done()`` once it has."""

@@ -1,4 +1,5 @@
 """Camera geometry: a sensor's pose, view and projection matrices, and its pinhole intrinsics."""
+
 from __future__ import annotations
 
 import math
@@ -18,15 +19,29 @@ def intrinsics(width: int, height: int, horizontal_fov: float) -> Tuple[List[flo
     """
     f = width / (2.0 * math.tan(horizontal_fov / 2.0))
     cx, cy = (width - 1) / 2.0, (height - 1) / 2.0
-    return [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0], \
-        [f, 0.0, cx, 0.0, 0.0, f, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+    return [f, 0.0, cx, 0.0, f, cy, 0.0, 0.0, 1.0], [
+        f,
+        0.0,
+        cx,
+        0.0,
+        0.0,
+        f,
+        cy,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0,
+    ]
 
 
-def sensor_pose(sensor: CameraSensor, link_position: Sequence[float],
-                link_orientation: Sequence[float]) -> Tuple[Sequence[float], Sequence[float]]:
+def sensor_pose(
+    sensor: CameraSensor, link_position: Sequence[float], link_orientation: Sequence[float]
+) -> Tuple[Sequence[float], Sequence[float]]:
     """World pose of the sensor: its link's pose composed with the sensor's <pose>."""
-    return p.multiplyTransforms(link_position, link_orientation, sensor.pose[:3],
-                                p.getQuaternionFromEuler(sensor.pose[3:]))
+    return p.multiplyTransforms(
+        link_position, link_orientation, sensor.pose[:3], p.getQuaternionFromEuler(sensor.pose[3:])
+    )
 
 
 def view_matrix(position: Sequence[float], orientation: Sequence[float]) -> Sequence[float]:
@@ -40,5 +55,4 @@ def view_matrix(position: Sequence[float], orientation: Sequence[float]) -> Sequ
 def projection_matrix(sensor: CameraSensor) -> Sequence[float]:
     aspect = sensor.width / float(sensor.height)
     vertical_fov = 2.0 * math.atan(math.tan(sensor.horizontal_fov / 2.0) / aspect)
-    return p.computeProjectionMatrixFOV(math.degrees(vertical_fov), aspect, sensor.near,
-                                        sensor.far)
+    return p.computeProjectionMatrixFOV(math.degrees(vertical_fov), aspect, sensor.near, sensor.far)

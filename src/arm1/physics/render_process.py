@@ -16,6 +16,7 @@ bytes, raw (no framing), or ``('error', text)``. The world receives those bytes
 straight into a buffer of its own with the GIL released: the pages of a fresh
 108 MB buffer fault in then, not on a copy that would hold the physics thread.
 """
+
 from __future__ import annotations
 
 import collections
@@ -62,14 +63,23 @@ def encode(rgba: np.ndarray, fmt: str) -> bytes:
     return np.ascontiguousarray(rgba[:, :, :3]).tobytes()
 
 
-def render(client: int, sensor: CameraSensor, link_position: Sequence[float],
-           link_orientation: Sequence[float]) -> bytes:
+def render(
+    client: int,
+    sensor: CameraSensor,
+    link_position: Sequence[float],
+    link_orientation: Sequence[float],
+) -> bytes:
     """One frame of ``sensor`` from a pybullet client, as image bytes (``sensor.step`` per row)."""
     w, h = sensor.width, sensor.height
     _, _, rgba, _, _ = p.getCameraImage(
-        w, h, view_matrix(*sensor_pose(sensor, link_position, link_orientation)),
-        projection_matrix(sensor), renderer=p.ER_TINY_RENDERER,
-        flags=p.ER_NO_SEGMENTATION_MASK, physicsClientId=client)
+        w,
+        h,
+        view_matrix(*sensor_pose(sensor, link_position, link_orientation)),
+        projection_matrix(sensor),
+        renderer=p.ER_TINY_RENDERER,
+        flags=p.ER_NO_SEGMENTATION_MASK,
+        physicsClientId=client,
+    )
     return encode(np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4), sensor.format)
 
 
@@ -108,8 +118,9 @@ def _serve(conn: Connection) -> None:
                 _, model, sensor, states = request
                 try:
                     if model in broken:
-                        raise RuntimeError("model '%s' could not be mirrored: %s"
-                                           % (model, broken[model]))
+                        raise RuntimeError(
+                            "model '%s' could not be mirrored: %s" % (model, broken[model])
+                        )
                     for name, state in states.items():
                         if name in mirror:
                             mirror[name].set_state(state)
@@ -151,10 +162,18 @@ class RenderProcess:
             end.setblocking(True)  # rospy sets a default socket timeout, which means non-blocking
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
         self.process = subprocess.Popen(
-            [sys.executable, '-c', 'import sys; from arm1.physics.render_process import '
-             'render_process_main; render_process_main(int(sys.argv[1]), int(sys.argv[2]))',
-             str(theirs.fileno()), str(niceness)],
-            pass_fds=[theirs.fileno()], env=env, stdout=subprocess.DEVNULL)
+            [
+                sys.executable,
+                '-c',
+                'import sys; from arm1.physics.render_process import '
+                'render_process_main; render_process_main(int(sys.argv[1]), int(sys.argv[2]))',
+                str(theirs.fileno()),
+                str(niceness),
+            ],
+            pass_fds=[theirs.fileno()],
+            env=env,
+            stdout=subprocess.DEVNULL,
+        )
         theirs.close()
         self.pid = self.process.pid
         self._conn = Connection(ours.detach())
@@ -164,8 +183,9 @@ class RenderProcess:
         self._replies: collections.deque = collections.deque()
         self._gone: Optional[str] = None  # why no more replies will come
         self._cond = threading.Condition()
-        self._reader = threading.Thread(target=self._read, name='render-reader-%d' % self.pid,
-                                        daemon=True)
+        self._reader = threading.Thread(
+            target=self._read, name='render-reader-%d' % self.pid, daemon=True
+        )
         self._reader.start()
         self.send((world_config, dict(robots)))
 
@@ -186,9 +206,13 @@ class RenderProcess:
                     code = self.process.wait(1.0)
                 except subprocess.TimeoutExpired:
                     pass
-            why = ('it exited with status %s' % code if code is not None and code >= 0 else
-                   'it was killed by signal %d' % -code if code is not None else
-                   'its connection closed (%s)' % (exc or type(exc).__name__))
+            why = (
+                'it exited with status %s' % code
+                if code is not None and code >= 0
+                else 'it was killed by signal %d' % -code
+                if code is not None
+                else 'its connection closed (%s)' % (exc or type(exc).__name__)
+            )
             with self._cond:
                 self._gone = 'render process %d is gone: %s' % (self.pid, why)
                 self._cond.notify()

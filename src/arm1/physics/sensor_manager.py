@@ -29,6 +29,7 @@ rate (sim-time pixels per second) must stay within
 possible") is charged RATE_ZERO_CHARGED_HZ: its real rate is whatever the
 render processes give it, which never holds the physics in either timing.
 """
+
 from __future__ import annotations
 
 import logging
@@ -54,6 +55,7 @@ Pixels = Union[bytes, memoryview]  # a frame's image bytes, ``sensor.step`` per 
 
 class Renderer(Protocol):
     """What the sensor manager needs of a render process (RenderProcess, or a test's fake)."""
+
     in_flight: int
 
     def send(self, message: Any) -> None: ...
@@ -143,9 +145,14 @@ def charged_rate(sensor: CameraSensor) -> float:
 class SensorManager:
     """Updates the cameras after each physics step; see the module doc for the timing."""
 
-    def __init__(self, world_config: Any, render_processes: Optional[int] = None,
-                 renderer_factory: Optional[RendererFactory] = None,
-                 restart_delay: float = RESTART_DELAY, max_restarts: int = MAX_RESTARTS) -> None:
+    def __init__(
+        self,
+        world_config: Any,
+        render_processes: Optional[int] = None,
+        renderer_factory: Optional[RendererFactory] = None,
+        restart_delay: float = RESTART_DELAY,
+        max_restarts: int = MAX_RESTARTS,
+    ) -> None:
         """``world_config``: a sdf_world.WorldConfig (its ``lockstep`` and ``limits`` count)."""
         self.world_config = world_config
         self.lockstep = bool(getattr(world_config, 'lockstep', False))
@@ -170,8 +177,9 @@ class SensorManager:
         return getattr(self.world_config, 'limits', None) or Limits()
 
     # -- models ----------------------------------------------------------------------
-    def add_robot(self, name: str, load_args: tuple,
-                  sensors: Iterable[CameraSensor] = ()) -> List[Camera]:
+    def add_robot(
+        self, name: str, load_args: tuple, sensors: Iterable[CameraSensor] = ()
+    ) -> List[Camera]:
         """Mirror a spawned robot; returns Camera objects for its ``camera_sensors``.
 
         Raises limits.LimitError, before anything changes, if the world's cameras
@@ -179,13 +187,19 @@ class SensorManager:
         """
         sensors = list(sensors)
         if sensors:
-            total = sum(c.sensor.pixels * charged_rate(c.sensor) for c in self.cameras) \
-                + sum(s.pixels * charged_rate(s) for s in sensors)
+            total = sum(c.sensor.pixels * charged_rate(c.sensor) for c in self.cameras) + sum(
+                s.pixels * charged_rate(s) for s in sensors
+            )
             others = len(self.cameras)
             self.limits.check(
-                'render_pixels_per_second', total, '%s%s' % (
+                'render_pixels_per_second',
+                total,
+                '%s%s'
+                % (
                     ', '.join(s.describe() for s in sensors),
-                    ' with the world\'s %d other camera(s)' % others if others else ''))
+                    ' with the world\'s %d other camera(s)' % others if others else '',
+                ),
+            )
         cameras = [Camera(name, s) for s in sensors]
         self._robots[name] = load_args
         self._to_renderers(('add', name, load_args))
@@ -285,9 +299,12 @@ class SensorManager:
         for _ in range(self.render_processes):
             self._spawn_renderer()
         if self.renderers:
-            log.info('cameras: %d render process(es) started (pid %s)%s', len(self.renderers),
-                     ', '.join(str(getattr(r, 'pid', '?')) for r in self.renderers),
-                     ' in lockstep' if self.lockstep else '')
+            log.info(
+                'cameras: %d render process(es) started (pid %s)%s',
+                len(self.renderers),
+                ', '.join(str(getattr(r, 'pid', '?')) for r in self.renderers),
+                ' in lockstep' if self.lockstep else '',
+            )
 
     def _spawn_renderer(self) -> None:
         try:
@@ -303,8 +320,10 @@ class SensorManager:
         before = len(self.renderers)
         self._spawn_renderer()
         if len(self.renderers) > before:
-            log.warning('cameras: render process %s started in place of a failed one',
-                        getattr(self.renderers[-1], 'pid', '?'))
+            log.warning(
+                'cameras: render process %s started in place of a failed one',
+                getattr(self.renderers[-1], 'pid', '?'),
+            )
 
     def _renderer_failed(self, renderer: Renderer, exc: Exception) -> None:
         """Drop a dead or hung render process and the frames it had; a replacement follows."""
@@ -324,10 +343,15 @@ class SensorManager:
             renderer.close(kill=True)
         except Exception as close_exc:  # it is gone either way
             log.debug('cameras: closing a failed render process: %s', close_exc)
-        names = sorted({f.camera.sensor.name for f in lost}) or \
-            [c.sensor.name for c in self.cameras]
-        log.error("cameras: %s; camera(s) %s lost %d frame(s)", exc,
-                  ', '.join("'%s'" % n for n in names) or 'none', len(lost))
+        names = sorted({f.camera.sensor.name for f in lost}) or [
+            c.sensor.name for c in self.cameras
+        ]
+        log.error(
+            "cameras: %s; camera(s) %s lost %d frame(s)",
+            exc,
+            ', '.join("'%s'" % n for n in names) or 'none',
+            len(lost),
+        )
         self._note_failure(str(exc))
         for cam in {f.camera for f in lost}:
             self._deliver_ready(cam)
@@ -336,17 +360,25 @@ class SensorManager:
         self.failures += 1
         if self.failures > self.max_restarts:
             if not self.failed:
-                log.error('cameras: %d render process failures in a row (last: %s); no more '
-                          'images from %s', self.failures, why,
-                          ', '.join("'%s'" % c.sensor.name for c in self.cameras) or 'any camera')
+                log.error(
+                    'cameras: %d render process failures in a row (last: %s); no more '
+                    'images from %s',
+                    self.failures,
+                    why,
+                    ', '.join("'%s'" % c.sensor.name for c in self.cameras) or 'any camera',
+                )
             self.failed = True
             for r in list(self.renderers):
                 self._renderer_failed_quietly(r)
             return
         delay = self.restart_delay * 2 ** (self.failures - 1)
         self._restart_at = time.monotonic() + delay
-        log.warning('cameras: a new render process in %.1f s (failure %d of at most %d)',
-                    delay, self.failures, self.max_restarts)
+        log.warning(
+            'cameras: a new render process in %.1f s (failure %d of at most %d)',
+            delay,
+            self.failures,
+            self.max_restarts,
+        )
 
     def _renderer_failed_quietly(self, renderer: Renderer) -> None:
         for f in [f for f in self._in_flight if f.renderer is renderer]:
@@ -357,8 +389,9 @@ class SensorManager:
         renderer.close(kill=True)
 
     # -- frames ----------------------------------------------------------------------
-    def _request(self, cam: Camera, now_ns: int, states: Dict[str, Any],
-                 renderer: Renderer) -> bool:
+    def _request(
+        self, cam: Camera, now_ns: int, states: Dict[str, Any], renderer: Renderer
+    ) -> bool:
         try:
             renderer.send(('render', cam.model, cam.sensor, states))
         except RenderError as exc:
@@ -379,10 +412,17 @@ class SensorManager:
                 while renderer.in_flight and renderer.ready():
                     self._finish(renderer, renderer.receive(0))
                 oldest = next((f for f in self._in_flight if f.renderer is renderer), None)
-                if oldest is not None and now - oldest.sent_at > render_timeout(oldest.camera.sensor):
-                    raise RenderError('render process %s sent no frame of camera \'%s\' in %.0f s'
-                                      % (getattr(renderer, 'pid', '?'),
-                                         oldest.camera.sensor.name, now - oldest.sent_at))
+                if oldest is not None and now - oldest.sent_at > render_timeout(
+                    oldest.camera.sensor
+                ):
+                    raise RenderError(
+                        'render process %s sent no frame of camera \'%s\' in %.0f s'
+                        % (
+                            getattr(renderer, 'pid', '?'),
+                            oldest.camera.sensor.name,
+                            now - oldest.sent_at,
+                        )
+                    )
             except RenderError as exc:
                 self._renderer_failed(renderer, exc)
 
@@ -418,8 +458,12 @@ class SensorManager:
                 cam.deliver(frame.stamp_ns, payload)
             elif payload != cam.last_error:  # once per distinct error, not 30 times a second
                 cam.last_error = payload
-                log.error("camera '%s' of model '%s': render failed: %s", cam.sensor.name,
-                          cam.model, payload)
+                log.error(
+                    "camera '%s' of model '%s': render failed: %s",
+                    cam.sensor.name,
+                    cam.model,
+                    payload,
+                )
 
     def drain(self) -> None:
         """Wait for every frame out and hand it over (for tests, in either timing)."""

@@ -4,6 +4,7 @@ The project's meshes (tools/generate_meshes.py) must come out byte for byte the 
 every run, so the header is ours (numpy-stl's default one carries the time of writing)
 and the stored normals are unit normals of the float32 vertices actually stored.
 """
+
 from __future__ import annotations
 
 from struct import error as struct_error
@@ -70,5 +71,7 @@ def read_stl(path: str) -> Tuple[NDArray[np.float64], NDArray[np.float64]]:
         loaded = stl.Mesh.from_file(path, calculate_normals=False)
     except (AssertionError, RuntimeError, ValueError, struct_error) as exc:
         raise ValueError('%s: not an STL file (%s)' % (path, exc)) from None
-    return (np.asarray(loaded.vectors, dtype=np.float64),
-            np.asarray(loaded.normals, dtype=np.float64))
+    return (
+        np.asarray(loaded.vectors, dtype=np.float64),
+        np.asarray(loaded.normals, dtype=np.float64),
+    )

@@ -1,4 +1,5 @@
 """The pybullet world: physics settings, static scenery, robots, stepping and reset."""
+
 import logging
 import os
 
@@ -18,8 +19,9 @@ def connect(gui):
             client = p.connect(p.GUI)
             if client >= 0:
                 return client, True
-            log.warning('could not open the pybullet window on %s: running headless',
-                        os.environ['DISPLAY'])
+            log.warning(
+                'could not open the pybullet window on %s: running headless', os.environ['DISPLAY']
+            )
     return p.connect(p.DIRECT), False
 
 
@@ -43,24 +45,34 @@ class World:
         for s in model.shapes:
             if s.kind == 'plane':
                 col = p.createCollisionShape(p.GEOM_PLANE, planeNormal=s.size, physicsClientId=cid)
-                vis = p.createVisualShape(p.GEOM_BOX, halfExtents=(50, 50, 0.0005),
-                                          rgbaColor=s.color, physicsClientId=cid)
+                vis = p.createVisualShape(
+                    p.GEOM_BOX, halfExtents=(50, 50, 0.0005), rgbaColor=s.color, physicsClientId=cid
+                )
             elif s.kind == 'box':
                 half = [v / 2 for v in s.size]
                 col = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=cid)
-                vis = p.createVisualShape(p.GEOM_BOX, halfExtents=half, rgbaColor=s.color,
-                                          physicsClientId=cid)
+                vis = p.createVisualShape(
+                    p.GEOM_BOX, halfExtents=half, rgbaColor=s.color, physicsClientId=cid
+                )
             elif s.kind == 'sphere':
                 col = p.createCollisionShape(p.GEOM_SPHERE, radius=s.size[0], physicsClientId=cid)
-                vis = p.createVisualShape(p.GEOM_SPHERE, radius=s.size[0], rgbaColor=s.color,
-                                          physicsClientId=cid)
+                vis = p.createVisualShape(
+                    p.GEOM_SPHERE, radius=s.size[0], rgbaColor=s.color, physicsClientId=cid
+                )
             else:
-                col = p.createCollisionShape(p.GEOM_CYLINDER, radius=s.size[0], height=s.size[1],
-                                             physicsClientId=cid)
-                vis = p.createVisualShape(p.GEOM_CYLINDER, radius=s.size[0], length=s.size[1],
-                                          rgbaColor=s.color, physicsClientId=cid)
-            pos, orn = p.multiplyTransforms(model.pose[:3], quat, s.pose[:3],
-                                            p.getQuaternionFromEuler(s.pose[3:]))
+                col = p.createCollisionShape(
+                    p.GEOM_CYLINDER, radius=s.size[0], height=s.size[1], physicsClientId=cid
+                )
+                vis = p.createVisualShape(
+                    p.GEOM_CYLINDER,
+                    radius=s.size[0],
+                    length=s.size[1],
+                    rgbaColor=s.color,
+                    physicsClientId=cid,
+                )
+            pos, orn = p.multiplyTransforms(
+                model.pose[:3], quat, s.pose[:3], p.getQuaternionFromEuler(s.pose[3:])
+            )
             bodies.append(p.createMultiBody(0, col, vis, pos, orn, physicsClientId=cid))
         return bodies
 

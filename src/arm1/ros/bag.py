@@ -5,6 +5,7 @@ Record one with e.g.::
 
     rosbag record -O run.bag /arm1/joint_states -e '/arm1/.*_position_controller/command'
 """
+
 from typing import Any, Dict, List, Tuple
 
 import rosbag

@@ -6,6 +6,7 @@ rendering. Frames arrive on the world's physics thread, stamped with the sim
 time they show; they are published from a thread of the camera's own, so that
 serializing a large frame (108 MB at 6000x6000) never holds the physics.
 """
+
 from __future__ import annotations
 
 import collections
@@ -28,8 +29,15 @@ CHUNK = 1 << 20  # bytes of pixels serialized at a time
 def camera_info(sensor: CameraSensor) -> CameraInfo:
     """The CameraInfo of an ideal pinhole with the sensor's size and field of view."""
     k, proj = intrinsics(sensor.width, sensor.height, sensor.horizontal_fov)
-    msg = CameraInfo(height=sensor.height, width=sensor.width, distortion_model='plumb_bob',
-                     D=[0.0] * 5, K=k, R=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], P=proj)
+    msg = CameraInfo(
+        height=sensor.height,
+        width=sensor.width,
+        distortion_model='plumb_bob',
+        D=[0.0] * 5,
+        K=k,
+        R=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+        P=proj,
+    )
     msg.header.frame_id = sensor.frame_name
     return msg
 
@@ -53,7 +61,7 @@ class ChunkedImage(Image):
         buff.write(struct.pack('<I', len(data)))
         view = memoryview(data)
         for start in range(0, len(view), CHUNK):
-            buff.write(view[start:start + CHUNK])
+            buff.write(view[start : start + CHUNK])
 
 
 class GazeboRosCamera:
@@ -69,8 +77,9 @@ class GazeboRosCamera:
         self._cond = threading.Condition()
         self._running = True
         self.dropped = 0  # frames the publishing thread was too slow for
-        self._thread = threading.Thread(target=self._run, daemon=True,
-                                        name='camera-%s' % sensor.name)
+        self._thread = threading.Thread(
+            target=self._run, daemon=True, name='camera-%s' % sensor.name
+        )
         self._thread.start()
         camera.wants_image = lambda: self._image_pub.get_num_connections() > 0
         camera.wants_info = lambda: self._info_pub.get_num_connections() > 0
@@ -112,8 +121,14 @@ class GazeboRosCamera:
 
     def publish_image(self, stamp_ns: int, data: Pixels) -> None:
         s = self.sensor
-        msg = ChunkedImage(height=s.height, width=s.width, encoding=s.encoding, is_bigendian=0,
-                           step=s.step, data=data)
+        msg = ChunkedImage(
+            height=s.height,
+            width=s.width,
+            encoding=s.encoding,
+            is_bigendian=0,
+            step=s.step,
+            data=data,
+        )
         msg.header.stamp = to_time(stamp_ns)
         msg.header.frame_id = s.frame_name
         self._image_pub.publish(msg)

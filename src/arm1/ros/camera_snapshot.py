@@ -1,7 +1,8 @@
 """camera_snapshot: saves a camera's next frame as a PNG file (to look at on a headless machine).
 
-    rosrun arm1 camera_snapshot [FILE.png] [--topic /rgb_camera/image_raw]
+rosrun arm1 camera_snapshot [FILE.png] [--topic /rgb_camera/image_raw]
 """
+
 import argparse
 import sys
 
@@ -29,6 +30,8 @@ def main(argv=None):
         return 1
     with open(args.file, 'wb') as f:
         f.write(png(msg.data, msg.width, msg.height, msg.step, msg.encoding))
-    print('%s: %dx%d %s from %s at t = %.3f s' % (args.file, msg.width, msg.height, msg.encoding,
-                                                 args.topic, msg.header.stamp.to_sec()))
+    print(
+        '%s: %dx%d %s from %s at t = %.3f s'
+        % (args.file, msg.width, msg.height, msg.encoding, args.topic, msg.header.stamp.to_sec())
+    )
     return 0

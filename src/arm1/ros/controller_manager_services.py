@@ -1,5 +1,6 @@
 """The ``<ns>/controller_manager/*`` services (upstream: the ROS side of controller_manager),
 translated onto the ROS-free ControllerManager."""
+
 import rospy
 from controller_manager_msgs.msg import ControllerState, HardwareInterfaceResources
 from controller_manager_msgs.srv import (
@@ -19,18 +20,30 @@ class ControllerManagerServices:
     def __init__(self, robot_hw, namespace):
         self.manager = ControllerManager(robot_hw, RosNodeHandle, namespace)
         base = '%s/controller_manager/' % namespace.rstrip('/')
-        self._services = [rospy.Service(base + name, srv, handler) for name, srv, handler in (
-            ('list_controllers', ListControllers, self._list),
-            ('list_controller_types', ListControllerTypes, self._types),
-            ('load_controller', LoadController, self._load),
-            ('unload_controller', UnloadController, self._unload),
-            ('switch_controller', SwitchController, self._switch),
-            ('reload_controller_libraries', ReloadControllerLibraries, self._reload))]
+        self._services = [
+            rospy.Service(base + name, srv, handler)
+            for name, srv, handler in (
+                ('list_controllers', ListControllers, self._list),
+                ('list_controller_types', ListControllerTypes, self._types),
+                ('load_controller', LoadController, self._load),
+                ('unload_controller', UnloadController, self._unload),
+                ('switch_controller', SwitchController, self._switch),
+                ('reload_controller_libraries', ReloadControllerLibraries, self._reload),
+            )
+        ]
 
     def _list(self, req):
-        return [[ControllerState(name=n, type=t, state=s, claimed_resources=[
-            HardwareInterfaceResources(i, joints) for i, joints in res])
-            for n, t, s, res in self.manager.list_controllers()]]
+        return [
+            [
+                ControllerState(
+                    name=n,
+                    type=t,
+                    state=s,
+                    claimed_resources=[HardwareInterfaceResources(i, joints) for i, joints in res],
+                )
+                for n, t, s, res in self.manager.list_controllers()
+            ]
+        ]
 
     def _types(self, req):
         types = self.manager.controller_types()
@@ -54,13 +67,16 @@ class ControllerManagerServices:
         return True
 
     def _switch(self, req):
-        return self.manager.switch_controller(req.start_controllers, req.stop_controllers,
-                                              req.strictness, req.timeout)
+        return self.manager.switch_controller(
+            req.start_controllers, req.stop_controllers, req.strictness, req.timeout
+        )
 
     def _reload(self, req):
         # Controller types are compiled in: there is no library to reload.
-        return not [n for n, _, s, _ in self.manager.list_controllers() if s == 'running'] \
+        return (
+            not [n for n, _, s, _ in self.manager.list_controllers() if s == 'running']
             or req.force_kill
+        )
 
     def shutdown(self):
         for s in self._services:

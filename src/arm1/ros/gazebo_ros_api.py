@@ -3,6 +3,7 @@
 Handlers run on rospy's threads. A request is checked and parsed there; whatever
 changes the world is handed to the physics thread (SimThreadCalls).
 """
+
 from __future__ import annotations
 
 from typing import Any, Callable, List, Sequence, Tuple
@@ -38,6 +39,7 @@ class GazeboRosApi:
         def handler(req: Any) -> List[Any]:
             self.calls.call(fn, *args)
             return []
+
         return handler
 
     def _set_paused(self, paused: bool) -> None:
@@ -62,16 +64,19 @@ class GazeboRosApi:
         rospy.loginfo(msg)
         return True, msg
 
-    def spawn(self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float],
-              namespace: str = '') -> Model:
+    def spawn(
+        self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float], namespace: str = ''
+    ) -> Model:
         """Spawn a URDF model with its plugins (controller manager, cameras).
 
         The request is parsed and checked on the calling thread; only what changes the
         world runs on the physics thread, so a large document does not hold physics back.
         """
         if namespace and not rosgraph.names.is_legal_name(namespace):
-            raise SpawnError("cannot spawn '%s': robot_namespace %s is not a legal ROS name"
-                             % (name, shown(namespace)))
+            raise SpawnError(
+                "cannot spawn '%s': robot_namespace %s is not a legal ROS name"
+                % (name, shown(namespace))
+            )
         prepared = self.sim.prepare_urdf(name, xml, xyz, quat, find_package)
         return self.calls.call(self._spawn_prepared, prepared, namespace)
 
@@ -83,8 +88,10 @@ class GazeboRosApi:
         """The ROS side of a model's plugins; each goes into the model's record."""
         if model.hw is not None:
             if not rosgraph.names.is_legal_name(model.namespace):
-                raise SpawnError('controller manager namespace %s is not a legal ROS name'
-                                 % shown(model.namespace))
+                raise SpawnError(
+                    'controller manager namespace %s is not a legal ROS name'
+                    % shown(model.namespace)
+                )
             services = ControllerManagerServices(model.hw, model.namespace)
             model.controller_manager = services.manager
             model.plugins.append(services)
@@ -100,8 +107,12 @@ class GazeboRosApi:
 
     def _configure(self, req: Any) -> Tuple[bool, str]:
         try:
-            self.calls.call(self.sim.set_model_configuration, req.model_name,
-                            list(req.joint_names), list(req.joint_positions))
+            self.calls.call(
+                self.sim.set_model_configuration,
+                req.model_name,
+                list(req.joint_names),
+                list(req.joint_positions),
+            )
         except SpawnError as exc:
             return False, str(exc)
         return True, 'SetModelConfiguration: success'

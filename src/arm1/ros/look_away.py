@@ -7,13 +7,14 @@ Still: every joint moved less than ``~still_threshold`` (0.0005 rad) since the
 previous ``<robot_namespace>/joint_states`` message. Uniform: every pixel
 equals the first one (see image.is_uniform).
 """
+
 import rospy
 from sensor_msgs.msg import Image, JointState
 
 from arm1.srv import GoToPosition
 
-from ..goal.look_away import LookAwayPolicy
 from ..goal.image import is_uniform
+from ..goal.look_away import LookAwayPolicy
 
 # Camera along the arm, pitched 0.2 rad down: the horizon in the upper third.
 DEFAULT_POSE = [0.0, 0.6, -0.4, -0.4]
@@ -30,10 +31,16 @@ class LookAway:
         self._safe_move = rospy.ServiceProxy('/arm_mover/safe_move', GoToPosition)
         self._not_before = rospy.Time(0)  # images taken before the last move ended are stale
         self._subs = [
-            rospy.Subscriber(ns + '/joint_states', JointState,
-                             lambda m: self.policy.joint_positions(m.position), queue_size=1),
-            rospy.Subscriber('rgb_camera/image_raw', Image, self._on_image, queue_size=1,
-                             buff_size=1 << 24)]
+            rospy.Subscriber(
+                ns + '/joint_states',
+                JointState,
+                lambda m: self.policy.joint_positions(m.position),
+                queue_size=1,
+            ),
+            rospy.Subscriber(
+                'rgb_camera/image_raw', Image, self._on_image, queue_size=1, buff_size=1 << 24
+            ),
+        ]
 
     def _on_image(self, img):
         if img.header.stamp < self._not_before:

@@ -8,6 +8,7 @@ master does not, it registers every publication, subscription and service again 
 the node of the publishers of its subscriptions. Parameters are not restored: they went with
 the old master (``robot_description``, the controllers' parameters, ``/use_sim_time``).
 """
+
 from __future__ import annotations
 
 import logging
@@ -45,9 +46,14 @@ class MasterWatch:
                 self._register(master)
             except (OSError, xmlrpc.client.Error) as exc:
                 if not gone:
-                    rospy.logwarn('%s: the ROS master at %s is unreachable (%s); connections '
-                                  'made so far still work, and this node registers again when '
-                                  'a master is back', caller_id, master.master_uri, exc)
+                    rospy.logwarn(
+                        '%s: the ROS master at %s is unreachable (%s); connections '
+                        'made so far still work, and this node registers again when '
+                        'a master is back',
+                        caller_id,
+                        master.master_uri,
+                        exc,
+                    )
                 gone = True
 
     def _register(self, master: rosgraph.Master) -> None:
@@ -59,8 +65,10 @@ class MasterWatch:
             try:
                 for topic, topic_type in publications:
                     master.registerPublisher(topic, topic_type, uri)
-                publishers = {topic: master.registerSubscriber(topic, topic_type, uri)
-                              for topic, topic_type in subscriptions}
+                publishers = {
+                    topic: master.registerSubscriber(topic, topic_type, uri)
+                    for topic, topic_type in subscriptions
+                }
                 for service, service_uri in services:
                     master.registerService(service, service_uri, uri)
             except (OSError, xmlrpc.client.Error, rosgraph.MasterError) as exc:
@@ -71,8 +79,12 @@ class MasterWatch:
             if uris:  # connect to the publishers the new master knows, as rospy does at start
                 node.publisherUpdate('/master', topic, uris)
         self.registrations += 1
-        rospy.logwarn('%s: registered again with the ROS master at %s (it was restarted): %d '
-                      'topics, %d services. Its parameters are gone: load them again (or '
-                      'restart the launch) before spawning or loading controllers.',
-                      rospy.get_name(), master.master_uri,
-                      len(publications) + len(subscriptions), len(services))
+        rospy.logwarn(
+            '%s: registered again with the ROS master at %s (it was restarted): %d '
+            'topics, %d services. Its parameters are gone: load them again (or '
+            'restart the launch) before spawning or loading controllers.',
+            rospy.get_name(),
+            master.master_uri,
+            len(publications) + len(subscriptions),
+            len(services),
+        )

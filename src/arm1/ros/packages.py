@@ -1,4 +1,5 @@
 """Finding ROS packages on the ROS package path: the one lookup every part of arm1 uses."""
+
 from __future__ import annotations
 
 import functools

@@ -7,6 +7,7 @@ update, show in ``<controller>/state`` and are written back to the parameter ser
 under ``<controller>/pid/``. The server starts from the controller's own gains (its
 ``pid/*`` parameters), not from the defaults in cfg/Pid.cfg, as control_toolbox does.
 """
+
 import importlib
 import logging
 
@@ -60,6 +61,10 @@ def serve_config(namespace, type_name, current, on_change):
     try:
         return ConfigServer(namespace, type_name, current, on_change)
     except ImportError as exc:
-        log.error('%s: no dynamic_reconfigure for %s (%s); run `make setup` to generate it',
-                  namespace, type_name, exc)
+        log.error(
+            '%s: no dynamic_reconfigure for %s (%s); run `make setup` to generate it',
+            namespace,
+            type_name,
+            exc,
+        )
         return None

@@ -1,4 +1,5 @@
 """``/clock`` and ``~real_time_factor`` from the physics thread."""
+
 from __future__ import annotations
 
 import time
@@ -37,9 +38,14 @@ class SimClock:
     def after_step(self, now_ns: int) -> None:
         """Publish if due; a time that went back (reset_simulation) is always due."""
         last = self._last_ns
-        if last is None or now_ns < last or (
+        if (
+            last is None
+            or now_ns < last
+            or (
                 now_ns - last >= self.period_ns
-                and time.perf_counter() - self._last_wall >= MIN_CLOCK_WALL_PERIOD):
+                and time.perf_counter() - self._last_wall >= MIN_CLOCK_WALL_PERIOD
+            )
+        ):
             self.publish(now_ns)
             self._last_ns, self._last_wall = now_ns, time.perf_counter()
             if self.rtf.update(now_ns * 1e-9):

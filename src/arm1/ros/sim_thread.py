@@ -3,6 +3,7 @@
 pybullet is not thread-safe and the simulation is not locked: a service handler
 hands its work over and waits for the answer; the world loop runs what waits.
 """
+
 from __future__ import annotations
 
 import collections
@@ -29,6 +30,7 @@ class SimThreadCalls:
             except Exception as exc:  # handed back to the caller's thread
                 box.append((False, exc))
             done.set()
+
         self._calls.append(run)
         while not done.wait(0.5):
             if rospy.is_shutdown():

@@ -1,4 +1,5 @@
 """``rosrun arm1 spawn_model``: gazebo_ros's spawn_model, against the stand-in world."""
+
 import argparse
 import math
 import sys
@@ -14,13 +15,21 @@ def quaternion_from_rpy(roll, pitch, yaw):
     cr, sr = math.cos(roll / 2), math.sin(roll / 2)
     cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
     cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
+    return (
+        sr * cp * cy - cr * sp * sy,
+        cr * sp * cy + sr * cp * sy,
+        cr * cp * sy - sr * sp * cy,
+        cr * cp * cy + sr * sp * sy,
+    )
 
 
 def parse_args(argv):
-    parser = argparse.ArgumentParser(prog='spawn_model', description=(
-        'Spawn a URDF model into the stand-in world (gazebo_ros spawn_model arguments).'))
+    parser = argparse.ArgumentParser(
+        prog='spawn_model',
+        description=(
+            'Spawn a URDF model into the stand-in world (gazebo_ros spawn_model arguments).'
+        ),
+    )
     source = parser.add_mutually_exclusive_group(required=True)
     source.add_argument('-param', help='parameter holding the URDF (e.g. robot_description)')
     source.add_argument('-file', help='URDF file')
@@ -29,15 +38,25 @@ def parse_args(argv):
     parser.add_argument('-model', required=True, help='model name')
     for axis in ('x', 'y', 'z', 'R', 'P', 'Y'):
         parser.add_argument('-' + axis, type=float, default=0.0)
-    parser.add_argument('-J', nargs=2, action='append', default=[], metavar=('JOINT', 'VALUE'),
-                        help='initial joint position (repeatable)')
+    parser.add_argument(
+        '-J',
+        nargs=2,
+        action='append',
+        default=[],
+        metavar=('JOINT', 'VALUE'),
+        help='initial joint position (repeatable)',
+    )
     parser.add_argument('-robot_namespace', default='')
     parser.add_argument('-reference_frame', default='')
     parser.add_argument('-gazebo_namespace', default='/gazebo')
     parser.add_argument('-unpause', action='store_true')
     parser.add_argument('-wait', help='ignored (waits for a model in Gazebo)')
-    parser.add_argument('-timeout', type=float, default=60.0,
-                        help='seconds to wait for the parameter and the world (default 60)')
+    parser.add_argument(
+        '-timeout',
+        type=float,
+        default=60.0,
+        help='seconds to wait for the parameter and the world (default 60)',
+    )
     parser.add_argument('-package_to_model', action='store_true', help='ignored')
     return parser.parse_args(argv)
 
@@ -51,8 +70,11 @@ def wait_for_param(name, timeout):
         if time.monotonic() >= deadline:
             return None
         if not announced:
-            rospy.loginfo('spawn_model: waiting for parameter %s (up to %.0f s)',
-                          rospy.resolve_name(name), timeout)
+            rospy.loginfo(
+                'spawn_model: waiting for parameter %s (up to %.0f s)',
+                rospy.resolve_name(name),
+                timeout,
+            )
             announced = True
         time.sleep(0.1)
     return None
@@ -67,8 +89,12 @@ def main(argv=None):
     if args.param:
         xml = wait_for_param(args.param, args.timeout)
         if xml is None:
-            rospy.logfatal('spawn_model: gave up after %.0f s waiting for parameter %s: is the '
-                           'robot description loaded?', args.timeout, rospy.resolve_name(args.param))
+            rospy.logfatal(
+                'spawn_model: gave up after %.0f s waiting for parameter %s: is the '
+                'robot description loaded?',
+                args.timeout,
+                rospy.resolve_name(args.param),
+            )
             return 1
     else:
         try:
@@ -83,15 +109,19 @@ def main(argv=None):
     try:
         rospy.wait_for_service(spawn_name, args.timeout)
     except rospy.ROSException:
-        rospy.logfatal('spawn_model: gave up after %.0f s waiting for service %s: is the world '
-                       'running?', args.timeout, spawn_name)
+        rospy.logfatal(
+            'spawn_model: gave up after %.0f s waiting for service %s: is the world running?',
+            args.timeout,
+            spawn_name,
+        )
         return 1
     pose = Pose()
     pose.position.x, pose.position.y, pose.position.z = args.x, args.y, args.z
     q = quaternion_from_rpy(args.R, args.P, args.Y)
     pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
     resp = rospy.ServiceProxy(spawn_name, SpawnModel)(
-        args.model, xml, args.robot_namespace, pose, args.reference_frame)
+        args.model, xml, args.robot_namespace, pose, args.reference_frame
+    )
     if not resp.success:
         rospy.logfatal('spawn_model: %s', resp.status_message)
         return 1
@@ -103,7 +133,8 @@ def main(argv=None):
             rospy.logfatal('spawn_model: -J takes a joint name and a number')
             return 1
         resp = rospy.ServiceProxy(ns + '/set_model_configuration', SetModelConfiguration)(
-            args.model, args.param or '', [j for j, _ in args.J], values)
+            args.model, args.param or '', [j for j, _ in args.J], values
+        )
         if not resp.success:
             rospy.logfatal('spawn_model: %s', resp.status_message)
             return 1

@@ -1,4 +1,5 @@
 """``rosrun arm1 spawner``: controller_manager's spawner, with its arguments and behaviour."""
+
 import argparse
 import sys
 
@@ -9,14 +10,20 @@ STRICT = 2
 
 
 def parse_args(argv):
-    parser = argparse.ArgumentParser(prog='spawner', description=(
-        'Loads and starts controllers; on shutdown stops and unloads them.'))
+    parser = argparse.ArgumentParser(
+        prog='spawner',
+        description=('Loads and starts controllers; on shutdown stops and unloads them.'),
+    )
     parser.add_argument('controllers', nargs='+')
     parser.add_argument('--stopped', action='store_true', help='load but do not start')
     parser.add_argument('--wait-for', metavar='TOPIC', help='wait for this topic first')
     parser.add_argument('--namespace', default='', help='namespace of the controller manager')
-    parser.add_argument('--timeout', type=float, default=30.0,
-                        help='seconds to wait for the controller manager (default 30)')
+    parser.add_argument(
+        '--timeout',
+        type=float,
+        default=30.0,
+        help='seconds to wait for the controller manager (default 30)',
+    )
     parser.add_argument('--no-timeout', action='store_true', help='wait for it forever')
     parser.add_argument('--shutdown-timeout', type=float, default=2.0)
     return parser.parse_args(argv)
@@ -26,8 +33,9 @@ class Spawner:
     def __init__(self, args):
         ns = args.namespace.rstrip('/')
         base = (ns + '/' if ns else '') + 'controller_manager/'
-        self.names = {s: base + s for s in ('load_controller', 'unload_controller',
-                                            'switch_controller')}
+        self.names = {
+            s: base + s for s in ('load_controller', 'unload_controller', 'switch_controller')
+        }
         self.args = args
         self.loaded = []
 
@@ -38,9 +46,12 @@ class Spawner:
             try:
                 rospy.wait_for_service(name, timeout)
             except rospy.ROSException:
-                rospy.logerr("Controller Spawner couldn't find the expected controller_manager ROS "
-                             'interface (%s not offered within %.0f s).',
-                             rospy.resolve_name(name), timeout)
+                rospy.logerr(
+                    "Controller Spawner couldn't find the expected controller_manager ROS "
+                    'interface (%s not offered within %.0f s).',
+                    rospy.resolve_name(name),
+                    timeout,
+                )
                 return False
         self.load = rospy.ServiceProxy(self.names['load_controller'], LoadController)
         self.unload = rospy.ServiceProxy(self.names['unload_controller'], UnloadController)

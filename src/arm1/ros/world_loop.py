@@ -1,4 +1,5 @@
 """The physics thread of the world node: hand-over calls, step, clock, pace."""
+
 from __future__ import annotations
 
 import time
@@ -12,8 +13,9 @@ from .sim_thread import SimThreadCalls
 
 
 class WorldLoop:
-    def __init__(self, sim: Simulation, calls: SimThreadCalls, clock: SimClock,
-                 paused: bool = False) -> None:
+    def __init__(
+        self, sim: Simulation, calls: SimThreadCalls, clock: SimClock, paused: bool = False
+    ) -> None:
         self.sim, self.calls, self.clock = sim, calls, clock
         self.paused = paused  # set only on this thread (through calls)
 

@@ -3,6 +3,7 @@
 Physics runs on the main thread (WorldLoop); service calls arrive on rospy's threads
 and are handed to it between two steps (SimThreadCalls), so pybullet is only touched there.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -11,9 +12,9 @@ from typing import List, Optional, Sequence, Tuple
 
 import rospy
 
-from ..sim.pacer import Pacer, wall_period
 from ..description.limits import LimitError, Limits
 from ..description.sdf_world import SdfError, WorldConfig, read_world
+from ..sim.pacer import Pacer, wall_period
 from ..sim.simulation import Model, Simulation
 from .gazebo_ros_api import GazeboRosApi
 from .master_watch import MasterWatch
@@ -33,8 +34,9 @@ class WorldNode:
         self.loop = WorldLoop(sim, self.calls, clock, paused)
         self.api = GazeboRosApi(sim, self.calls, self.loop)
 
-    def spawn(self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float],
-              namespace: str = '') -> Model:
+    def spawn(
+        self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float], namespace: str = ''
+    ) -> Model:
         return self.api.spawn(name, xml, xyz, quat, namespace)
 
     def run(self, pacer: Pacer) -> None:
@@ -42,17 +44,28 @@ class WorldNode:
 
 
 def parse_args(argv: List[str]) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(prog='gzserver', description=(
-        'pybullet stand-in for gzserver with gazebo_ros: runs the world file, publishes /clock '
-        'and offers the /gazebo services.'))
+    parser = argparse.ArgumentParser(
+        prog='gzserver',
+        description=(
+            'pybullet stand-in for gzserver with gazebo_ros: runs the world file, publishes /clock '
+            'and offers the /gazebo services.'
+        ),
+    )
     parser.add_argument('world', nargs='?', help='SDF world file (default: an empty world)')
     parser.add_argument('-u', '--paused', action='store_true', help='start with physics paused')
-    parser.add_argument('--gui', action='store_true', help="open pybullet's window if a display exists")
+    parser.add_argument(
+        '--gui', action='store_true', help="open pybullet's window if a display exists"
+    )
     parser.add_argument('-e', '--physics', default='ode', help='ignored: pybullet is the engine')
     parser.add_argument('--verbose', action='store_true')
-    parser.add_argument('--lockstep', action='store_true', help=(
-        'physics waits for every camera frame (deterministic; the real-time factor drops '
-        'instead of the image rate)'))
+    parser.add_argument(
+        '--lockstep',
+        action='store_true',
+        help=(
+            'physics waits for every camera frame (deterministic; the real-time factor drops '
+            'instead of the image rate)'
+        ),
+    )
     parser.add_argument('--real-time-factor', type=float, help='overrides the world file')
     parser.add_argument('--real-time-update-rate', type=float, help='overrides the world file')
     return parser.parse_args(argv)
@@ -62,8 +75,9 @@ def world_config(args: argparse.Namespace) -> WorldConfig:
     """The world file, with the command line's and the ``~limits`` parameters' overrides."""
     config = read_world(args.world) if args.world else WorldConfig()
     config.lockstep = args.lockstep
-    config.limits = Limits.from_mapping(rospy.get_param('~limits', {}),
-                                        rospy.resolve_name('~limits'), config.limits)
+    config.limits = Limits.from_mapping(
+        rospy.get_param('~limits', {}), rospy.resolve_name('~limits'), config.limits
+    )
     for attr in ('real_time_factor', 'real_time_update_rate'):
         if getattr(args, attr) is not None:
             setattr(config, attr, getattr(args, attr))
@@ -83,11 +97,16 @@ def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
     if config.skipped:
         rospy.logwarn('world: not built: %s', '; '.join('%s (%s)' % s for s in config.skipped))
     node = WorldNode(Simulation(config, gui=args.gui), paused=args.paused)
-    period = wall_period(config.max_step_size, config.real_time_factor,
-                         config.real_time_update_rate)
-    rospy.loginfo('world ready: step %.4f s, real-time factor %g, update rate %g Hz%s',
-                  config.max_step_size, config.real_time_factor, config.real_time_update_rate,
-                  ' (paused)' if args.paused else '')
+    period = wall_period(
+        config.max_step_size, config.real_time_factor, config.real_time_update_rate
+    )
+    rospy.loginfo(
+        'world ready: step %.4f s, real-time factor %g, update rate %g Hz%s',
+        config.max_step_size,
+        config.real_time_factor,
+        config.real_time_update_rate,
+        ' (paused)' if args.paused else '',
+    )
     return node, Pacer(period)
 
 

@@ -19,6 +19,7 @@ def find_package(pkg: str) -> str:
         return packages.find_package(pkg)
     except LookupError:
         from xacro.substitution_args import SubstitutionException
+
         raise SubstitutionException("package '%s' not found on ROS_PACKAGE_PATH" % pkg) from None
 
 
@@ -26,6 +27,7 @@ def install():
     """Make xacro's ``$(find pkg)`` (both the substitution arg and the one
     usable inside ``$(eval ...)``) resolve through :func:`find_package`."""
     from xacro import substitution_args
+
     substitution_args._eval_find = find_package
     substitution_args._eval_dict['find'] = find_package
 
@@ -36,6 +38,7 @@ def expand(path, mappings=None):
     ``mappings`` is a dict of xacro arguments (what ``name:=value`` gives on
     the command line)."""
     import xacro
+
     install()
     doc = xacro.process_file(path, mappings=dict(mappings or {}))
     return doc.toprettyxml(indent='  ')
@@ -44,6 +47,7 @@ def expand(path, mappings=None):
 def main(argv=None):
     """Command line entry point, same options as ``xacro``."""
     import xacro
+
     install()
     if argv is not None:
         sys.argv = [sys.argv[0]] + list(argv)

@@ -5,6 +5,7 @@ on a private master, prints sim time, real-time factor and each joint's command
 and position once a wall second, then a summary; exits non-zero if the arm did
 not follow.
 """
+
 import argparse
 import math
 import sys
@@ -20,6 +21,7 @@ class Monitor:
         import rospy
         from sensor_msgs.msg import JointState
         from std_msgs.msg import Float64
+
         self.lock = threading.Lock()
         self.position: Dict[str, float] = {}
         self.command: Dict[str, float] = {}
@@ -27,19 +29,28 @@ class Monitor:
         self.stamp = 0.0
         self.samples = []  # (sim time, {joint: (command, position)})
         rospy.Subscriber('/arm1/joint_states', JointState, self._on_state, queue_size=10)
-        rospy.Subscriber('/gazebo/real_time_factor', Float64,
-                         lambda m: setattr(self, 'rtf', m.data), queue_size=1)
+        rospy.Subscriber(
+            '/gazebo/real_time_factor',
+            Float64,
+            lambda m: setattr(self, 'rtf', m.data),
+            queue_size=1,
+        )
         for j in JOINTS:
-            rospy.Subscriber('/arm1/%s_position_controller/command' % j, Float64,
-                             lambda m, j=j: self.command.__setitem__(j, m.data), queue_size=1)
+            rospy.Subscriber(
+                '/arm1/%s_position_controller/command' % j,
+                Float64,
+                lambda m, j=j: self.command.__setitem__(j, m.data),
+                queue_size=1,
+            )
 
     def _on_state(self, msg):
         with self.lock:
             self.stamp = msg.header.stamp.to_sec()
             self.position = dict(zip(msg.name, msg.position))
             if all(j in self.command for j in JOINTS):
-                self.samples.append((self.stamp, {j: (self.command[j], self.position.get(j))
-                                                  for j in JOINTS}))
+                self.samples.append(
+                    (self.stamp, {j: (self.command[j], self.position.get(j)) for j in JOINTS})
+                )
 
 
 def table_header():
@@ -49,14 +60,18 @@ def table_header():
 
 def table_row(mon):
     with mon.lock:
-        cells = ''.join('%7s %7s  ' % (_f(mon.command.get(j)), _f(mon.position.get(j)))
-                        for j in JOINTS)
+        cells = ''.join(
+            '%7s %7s  ' % (_f(mon.command.get(j)), _f(mon.position.get(j))) for j in JOINTS
+        )
         return '%8.2f %6s  %s' % (mon.stamp, _f(mon.rtf, 2), cells)
 
 
 def _f(value, digits=3):
-    return '-' if value is None or (isinstance(value, float) and math.isnan(value)) \
+    return (
+        '-'
+        if value is None or (isinstance(value, float) and math.isnan(value))
         else '%.*f' % (digits, value)
+    )
 
 
 def summary(samples, limits):
@@ -72,9 +87,19 @@ def summary(samples, limits):
         within = lo - 0.05 <= min(pos) and max(pos) <= hi + 0.05
         moved = max(pos) - min(pos) > 0.5 * (hi - lo)
         ok = ok and within and moved
-        lines.append('%s: reached [%+.3f, %+.3f] of limits [%+.2f, %+.2f]  median |error| %.3f rad'
-                     '  %s' % (j, min(pos), max(pos), lo, hi, sorted(err)[len(err) // 2],
-                               'ok' if within and moved else 'FAILED'))
+        lines.append(
+            '%s: reached [%+.3f, %+.3f] of limits [%+.2f, %+.2f]  median |error| %.3f rad'
+            '  %s'
+            % (
+                j,
+                min(pos),
+                max(pos),
+                lo,
+                hi,
+                sorted(err)[len(err) // 2],
+                'ok' if within and moved else 'FAILED',
+            )
+        )
     return lines, ok
 
 
@@ -84,10 +109,13 @@ def main(argv=None):
     args = parser.parse_args(argv)
 
     from .launcher import RosSession
+
     session = RosSession()
     session.activate()
     import rospy
+
     from ..description.urdf_model import parse_urdf
+
     with session:
         print('starting: roslaunch arm1 gazebo.launch gui:=false; rosrun arm1 simple_mover')
         session.roslaunch('arm1', 'gazebo.launch', 'gui:=false')
@@ -102,8 +130,10 @@ def main(argv=None):
             print('FAILED: no /arm1/joint_states within 30 s', file=sys.stderr)
             return 1
         description = parse_urdf(rospy.get_param('/robot_description'))
-        limits = {j: (description.joints[j].limits.lower, description.joints[j].limits.upper)
-                  for j in JOINTS}
+        limits = {
+            j: (description.joints[j].limits.lower, description.joints[j].limits.upper)
+            for j in JOINTS
+        }
         session.start('rosrun', 'arm1', 'simple_mover')
         print(table_header())
         end = time.monotonic() + args.duration
@@ -113,8 +143,10 @@ def main(argv=None):
         rospy.signal_shutdown('demo over')
     lines, ok = summary(mon.samples, limits)
     print('\n'.join(lines))
-    print('demo: %s' % ('all four joints followed simple_mover within their limits' if ok
-                        else 'FAILED'))
+    print(
+        'demo: %s'
+        % ('all four joints followed simple_mover within their limits' if ok else 'FAILED')
+    )
     return 0 if ok else 1
 
 

@@ -1,4 +1,6 @@
-"""Starts and stops roslaunch / rosrun processes against a private ROS master (demo, tests, bench)."""
+"""Starts and stops roslaunch / rosrun processes against a private ROS master (demo, tests,
+bench)."""
+
 import os
 import signal
 import socket
@@ -41,10 +43,13 @@ def free_port():
 def node_pid(name: str, master_uri: Optional[str] = None, caller: str = '/arm1_launcher') -> int:
     """The pid of a running node (its slave API's getPid), looked up at the master."""
     import xmlrpc.client
+
     import rosgraph
+
     master = rosgraph.Master(caller, master_uri=master_uri)
     reply: Tuple[int, str, int] = xmlrpc.client.ServerProxy(  # type: ignore[assignment]
-        master.lookupNode(name)).getPid(caller)
+        master.lookupNode(name)
+    ).getPid(caller)
     code, msg, pid = reply
     if code != 1:
         raise RuntimeError('getPid of %s failed: %s' % (name, msg))
@@ -54,8 +59,12 @@ def node_pid(name: str, master_uri: Optional[str] = None, caller: str = '/arm1_l
 def listening_addresses(pid: int) -> List[Tuple[str, int]]:
     """(ip, port) of every TCP socket the process listens on."""
     import psutil
-    return sorted((c.laddr.ip, c.laddr.port) for c in psutil.Process(pid).connections('tcp')
-                  if c.status == psutil.CONN_LISTEN)
+
+    return sorted(
+        (c.laddr.ip, c.laddr.port)
+        for c in psutil.Process(pid).connections('tcp')
+        if c.status == psutil.CONN_LISTEN
+    )
 
 
 class RosSession:
@@ -75,6 +84,7 @@ class RosSession:
 
     def wait_for_master(self, timeout=20.0):
         import rosgraph
+
         master = rosgraph.Master('/arm1_launcher', master_uri=self.env['ROS_MASTER_URI'])
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
@@ -86,9 +96,13 @@ class RosSession:
         return False
 
     def start(self, *cmd, quiet=True):
-        proc = subprocess.Popen(cmd, env=self.env, start_new_session=True,
-                                stdout=subprocess.DEVNULL if quiet else None,
-                                stderr=subprocess.STDOUT if quiet else None)
+        proc = subprocess.Popen(
+            cmd,
+            env=self.env,
+            start_new_session=True,
+            stdout=subprocess.DEVNULL if quiet else None,
+            stderr=subprocess.STDOUT if quiet else None,
+        )
         self.procs.append(proc)
         return proc
 

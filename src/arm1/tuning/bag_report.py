@@ -1,4 +1,5 @@
 """``tune --bag``: the steps of a recorded run (a rosbag), measured like simulated ones."""
+
 from __future__ import annotations
 
 import argparse
@@ -12,6 +13,7 @@ from .report import HEADER, recorded_rows
 def run_bag(args: argparse.Namespace, setup: Setup, out: IO[str]) -> int:
     """Print every step found in ``args.bag`` with its metrics and verdict."""
     from ..ros.bag import read_run
+
     rig = setup.rig()  # for the namespace, the controllers and the joint limits
     try:
         namespace = args.namespace or rig.namespace
@@ -20,8 +22,11 @@ def run_bag(args: argparse.Namespace, setup: Setup, out: IO[str]) -> int:
     finally:
         rig.close()
     data = read_run(args.bag, namespace, controllers)
-    print('steps in %s (namespace %s; command changes >= %g rad held >= 0.5 s)' % (
-        args.bag, namespace, args.min_step), file=out)
+    print(
+        'steps in %s (namespace %s; command changes >= %g rad held >= 0.5 s)'
+        % (args.bag, namespace, args.min_step),
+        file=out,
+    )
     print(HEADER.replace('step ', 't    '), file=out)
     found = 0
     for joint in sorted(data):
@@ -32,6 +37,8 @@ def run_bag(args: argparse.Namespace, setup: Setup, out: IO[str]) -> int:
             print(row, file=out)
         found += len(steps)
     if not found:
-        print('no steps found (commands must change by >= %g rad and then hold)' % args.min_step,
-              file=out)
+        print(
+            'no steps found (commands must change by >= %g rad and then hold)' % args.min_step,
+            file=out,
+        )
     return 0

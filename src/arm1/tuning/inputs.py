@@ -1,5 +1,6 @@
 """What ``tune``'s arguments name: the robot description, its parameters, the world, the
 step protocol and the criteria."""
+
 from __future__ import annotations
 
 import argparse
@@ -49,7 +50,8 @@ class Setup:
         with open(self.controllers_path) as f:
             self.params: Dict[str, Any] = yaml.safe_load(f) or {}
         self.world: Optional[str] = args.world or (
-            arm1_file('worlds/willow_garage.world') if self.arm1 else None)
+            arm1_file('worlds/willow_garage.world') if self.arm1 else None
+        )
         start = dict(ARM1_START) if self.arm1 else {}
         start.update(parse_pose(args.start))
         if args.pose is None:

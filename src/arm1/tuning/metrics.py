@@ -16,6 +16,7 @@ The final window is the last ``final_window`` seconds of the hold. Crossing
 times are interpolated linearly between samples, so sparse recordings (50 Hz
 joint_states) still give usable numbers.
 """
+
 import math
 from dataclasses import asdict, dataclass
 
@@ -48,6 +49,7 @@ class StepMetrics:
 @dataclass
 class Criteria:
     """What a good step looks like: the search's constraints and the pass/fail of a report."""
+
     max_overshoot: float = 5.0  # %
     max_jitter: float = 0.001  # rad peak to peak once settled (about 0.06 degrees)
 
@@ -80,8 +82,9 @@ def _crossing(times, values, i, level):
     return times[i - 1] + (times[i] - times[i - 1]) * (level - v0) / (v1 - v0)
 
 
-def step_metrics(times, positions, target, start=None, t_step=None, band=BAND,
-                 final_window=FINAL_WINDOW):
+def step_metrics(
+    times, positions, target, start=None, t_step=None, band=BAND, final_window=FINAL_WINDOW
+):
     """StepMetrics of one step; see the module docstring for the definitions.
 
     ``start`` defaults to the first position, ``t_step`` to the first time.
@@ -135,8 +138,9 @@ def step_metrics(times, positions, target, start=None, t_step=None, band=BAND,
     tail = [x for t, x in zip(times, positions) if t >= t_end - final_window] or positions[-1:]
     steady_state_error = target - sum(tail) / len(tail)
     jitter = max(tail) - min(tail)
-    return StepMetrics(start, target, rise_time, overshoot, settling_time, steady_state_error,
-                       jitter)
+    return StepMetrics(
+        start, target, rise_time, overshoot, settling_time, steady_state_error, jitter
+    )
 
 
 def worst(metrics):
@@ -148,10 +152,13 @@ def worst(metrics):
     def nanmax(values):
         values = list(values)
         return math.nan if any(math.isnan(v) for v in values) else max(values)
+
     return StepMetrics(
-        metrics[0].start, metrics[0].target,
+        metrics[0].start,
+        metrics[0].target,
         nanmax(m.rise_time for m in metrics),
         max(m.overshoot for m in metrics),
         max(m.settling_time for m in metrics),
         max((m.steady_state_error for m in metrics), key=abs),
-        max(m.jitter for m in metrics))
+        max(m.jitter for m in metrics),
+    )

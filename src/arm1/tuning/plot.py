@@ -1,4 +1,5 @@
 """PNG plots of step runs (matplotlib, Agg backend: no display needed)."""
+
 import os
 
 import matplotlib
@@ -21,8 +22,9 @@ def plot_runs(directory, before, after=None, protocol=None):
     os.makedirs(directory, exist_ok=True)
     paths = []
     for joint, run in before.items():
-        fig, (ax, ax_e) = plt.subplots(2, 1, figsize=(9, 6), sharex=True,
-                                       gridspec_kw={'height_ratios': [3, 1]})
+        fig, (ax, ax_e) = plt.subplots(
+            2, 1, figsize=(9, 6), sharex=True, gridspec_kw={'height_ratios': [3, 1]}
+        )
         series = [('current gains', run, 'tab:red')]
         if after and joint in after:
             series.append(('found gains', after[joint], 'tab:blue'))
@@ -33,18 +35,30 @@ def plot_runs(directory, before, after=None, protocol=None):
         ax.plot([t for t, _ in target], [v for _, v in target], 'k--', lw=1, label='command')
         for label, r, color in series:
             m = r.metrics
-            text = ', '.join('%s: %.1f%% / %s' % (
-                name, mm.overshoot,
-                '%.2f s' % mm.settling_time if mm.settled else 'not settled')
-                for (name, *_), mm in zip(r.steps, m))
-            ax.plot(r.times, r.positions, color=color, lw=1,
-                    label='%s (overshoot / settling: %s)' % (label, text))
+            text = ', '.join(
+                '%s: %.1f%% / %s'
+                % (name, mm.overshoot, '%.2f s' % mm.settling_time if mm.settled else 'not settled')
+                for (name, *_), mm in zip(r.steps, m)
+            )
+            ax.plot(
+                r.times,
+                r.positions,
+                color=color,
+                lw=1,
+                label='%s (overshoot / settling: %s)' % (label, text),
+            )
             ax_e.plot(r.times, r.efforts, color=color, lw=0.6)
             _band(ax, r, color)
         ax.set_ylabel('%s position (rad)' % joint)
-        ax.set_title('%s step responses%s' % (
-            joint, '' if protocol is None else ' (step %g rad, band +-%g %%)' % (
-                protocol.step, BAND * 100)))
+        ax.set_title(
+            '%s step responses%s'
+            % (
+                joint,
+                ''
+                if protocol is None
+                else ' (step %g rad, band +-%g %%)' % (protocol.step, BAND * 100),
+            )
+        )
         ax.legend(fontsize=8, loc='best')
         ax.grid(alpha=0.3)
         ax_e.set_ylabel('effort (N m)')
@@ -60,10 +74,14 @@ def plot_runs(directory, before, after=None, protocol=None):
     for row, (joint, run) in zip(axes, before.items()):
         for ax, step_index in zip(row, (0, 1)):
             for label, r, color in [('current', run, 'tab:red')] + (
-                    [('found', after[joint], 'tab:blue')] if after and joint in after else []):
+                [('found', after[joint], 'tab:blue')] if after and joint in after else []
+            ):
                 _, t_step, start, target = r.steps[step_index]
-                pts = [(t - t_step, x) for t, x in zip(r.times, r.positions)
-                       if t_step - 0.05 <= t <= t_step + 1.0]
+                pts = [
+                    (t - t_step, x)
+                    for t, x in zip(r.times, r.positions)
+                    if t_step - 0.05 <= t <= t_step + 1.0
+                ]
                 ax.plot([t for t, _ in pts], [x for _, x in pts], color=color, lw=1, label=label)
             ax.axhline(target, color='k', ls='--', lw=0.8)
             ax.set_title('%s %s' % (joint, ('out', 'back')[step_index]), fontsize=9)

@@ -13,6 +13,7 @@ Sparse samples can only miss what happens between them: at joint_states' 50 Hz a
 fast wobble (arm1's is at up to 500 Hz) may go unseen, so recorded overshoot, jitter
 and settling time are lower bounds of what a 1 kHz record would show.
 """
+
 import bisect
 from typing import List, Tuple
 
@@ -51,8 +52,7 @@ def _position_at(times, positions, t):
     return x0 if t1 == t0 else x0 + (x1 - x0) * (t - t0) / (t1 - t0)
 
 
-def recorded_steps(commands, samples, lower=None, upper=None, min_step=MIN_STEP,
-                   min_hold=MIN_HOLD):
+def recorded_steps(commands, samples, lower=None, upper=None, min_step=MIN_STEP, min_hold=MIN_HOLD):
     """``[(t_step, StepMetrics)]`` for the steps in ``commands`` measured on ``samples``
     (``[(t, position)]``, the joint's positions)."""
     samples = sorted(samples)

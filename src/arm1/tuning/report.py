@@ -1,5 +1,6 @@
 """What ``tune`` prints: the metrics table, verdicts, gains, the yaml snippet, and the
 search's progress bar (tqdm)."""
+
 from __future__ import annotations
 
 import math
@@ -15,7 +16,16 @@ Gains = Mapping[str, Any]  # one joint's: p, i, d, i_clamp_max, i_clamp_min, ant
 RunsByPose = List[Dict[str, StepRun]]  # per start pose of the protocol: joint -> run
 
 HEADER = '%-8s %-5s %8s %8s %8s %10s %9s %9s  %s' % (
-    'joint', 'step', 'start', 'target', 'rise', 'overshoot', 'settle', 'sse', 'jitter')
+    'joint',
+    'step',
+    'start',
+    'target',
+    'rise',
+    'overshoot',
+    'settle',
+    'sse',
+    'jitter',
+)
 
 
 def verdict(run: StepRun, criteria: Criteria) -> str:
@@ -38,33 +48,70 @@ def rise_text(m: StepMetrics) -> str:
 def metric_rows(joint: str, run: StepRun, criteria: Criteria) -> List[str]:
     rows = []
     for name, m in zip(('out', 'back'), run.metrics):
-        rows.append('%-8s %-5s %+8.3f %+8.3f %8s %9.1f%% %9s %+9.4f  %.2g rad' % (
-            joint, name, m.start, m.target, rise_text(m), m.overshoot,
-            fmt_time(m.settling_time), m.steady_state_error, m.jitter))
-    rows.append('%-8s %s (other joints moved up to %.3f rad)' % (
-        '', verdict(run, criteria), run.others_wobble))
+        rows.append(
+            '%-8s %-5s %+8.3f %+8.3f %8s %9.1f%% %9s %+9.4f  %.2g rad'
+            % (
+                joint,
+                name,
+                m.start,
+                m.target,
+                rise_text(m),
+                m.overshoot,
+                fmt_time(m.settling_time),
+                m.steady_state_error,
+                m.jitter,
+            )
+        )
+    rows.append(
+        '%-8s %s (other joints moved up to %.3f rad)'
+        % ('', verdict(run, criteria), run.others_wobble)
+    )
     return rows
 
 
 def gains_text(g: Gains) -> str:
     return 'p %.4g, i %.4g, d %.4g, i_clamp %.4g%s' % (
-        g['p'], g['i'], g['d'], g['i_clamp_max'], ', antiwindup' if g.get('antiwindup') else '')
+        g['p'],
+        g['i'],
+        g['d'],
+        g['i_clamp_max'],
+        ', antiwindup' if g.get('antiwindup') else '',
+    )
 
 
-def intro(model: str, urdf_path: str, controllers_path: str, namespace: str,
-          protocol: Protocol, criteria: Criteria, out: IO[str]) -> None:
+def intro(
+    model: str,
+    urdf_path: str,
+    controllers_path: str,
+    namespace: str,
+    protocol: Protocol,
+    criteria: Criteria,
+    out: IO[str],
+) -> None:
     """What is tuned, with which protocol, and what the figures mean."""
-    print('robot %s (%s), controllers %s, namespace %s' % (
-        model, urdf_path, controllers_path, namespace), file=out)
+    print(
+        'robot %s (%s), controllers %s, namespace %s'
+        % (model, urdf_path, controllers_path, namespace),
+        file=out,
+    )
     print('protocol: %s' % protocol.describe(), file=out)
-    print('metrics: rise 10-90 %%, overshoot in %% of the step, settling into +-%g %% of the '
-          'step, sse and jitter (peak to peak) over the last %g s of each hold; ok = '
-          'settled, overshoot <= %g %%, jitter <= %g rad' % (
-              BAND * 100, FINAL_WINDOW, criteria.max_overshoot, criteria.max_jitter), file=out)
+    print(
+        'metrics: rise 10-90 %%, overshoot in %% of the step, settling into +-%g %% of the '
+        'step, sse and jitter (peak to peak) over the last %g s of each hold; ok = '
+        'settled, overshoot <= %g %%, jitter <= %g rad'
+        % (BAND * 100, FINAL_WINDOW, criteria.max_overshoot, criteria.max_jitter),
+        file=out,
+    )
 
 
-def report(title: str, runs_by_pose: RunsByPose, gains: Mapping[str, Gains],
-           criteria: Criteria, protocol: Protocol, out: IO[str]) -> None:
+def report(
+    title: str,
+    runs_by_pose: RunsByPose,
+    gains: Mapping[str, Gains],
+    criteria: Criteria,
+    protocol: Protocol,
+    out: IO[str],
+) -> None:
     print('\n%s' % title, file=out)
     for j in runs_by_pose[0]:
         print('%-8s %s' % (j, gains_text(gains[j])), file=out)
@@ -78,8 +125,9 @@ def report(title: str, runs_by_pose: RunsByPose, gains: Mapping[str, Gains],
 
 def failing(runs_by_pose: RunsByPose, criteria: Criteria) -> List[str]:
     """Joints whose runs miss the criteria from any start pose."""
-    return sorted({j for runs in runs_by_pose for j, run in runs.items()
-                   if verdict(run, criteria) != 'ok'})
+    return sorted(
+        {j for runs in runs_by_pose for j, run in runs.items() if verdict(run, criteria) != 'ok'}
+    )
 
 
 def snippet(namespace: str, controllers: Mapping[str, str], gains: Mapping[str, Gains]) -> str:
@@ -88,12 +136,15 @@ def snippet(namespace: str, controllers: Mapping[str, str], gains: Mapping[str, 
     lines = ['%s:' % ns]
     for joint in sorted(controllers):
         pid = yaml_pid(gains[joint])
-        inner = ', '.join('%s: %s' % (k, ('true' if v is True else repr(v)))
-                          for k, v in pid.items())
-        lines += ['  %s:' % controllers[joint],
-                  '    type: effort_controllers/JointPositionController',
-                  '    joint: %s' % joint,
-                  '    pid: {%s}' % inner]
+        inner = ', '.join(
+            '%s: %s' % (k, ('true' if v is True else repr(v))) for k, v in pid.items()
+        )
+        lines += [
+            '  %s:' % controllers[joint],
+            '    type: effort_controllers/JointPositionController',
+            '    joint: %s' % joint,
+            '    pid: {%s}' % inner,
+        ]
     return '\n'.join(lines)
 
 
@@ -108,8 +159,13 @@ class SearchProgress:
     def __call__(self, done: int, total: int, text: str) -> None:
         if self.bar is None:
             tty = hasattr(self.stream, 'isatty') and self.stream.isatty()
-            self.bar = tqdm(total=total, file=self.stream, unit='set', dynamic_ncols=True,
-                            mininterval=0.1 if tty else 2.0)
+            self.bar = tqdm(
+                total=total,
+                file=self.stream,
+                unit='set',
+                dynamic_ncols=True,
+                mininterval=0.1 if tty else 2.0,
+            )
         self.bar.set_postfix_str(text, refresh=False)
         self.bar.update(done - self.bar.n)
 
@@ -120,7 +176,19 @@ class SearchProgress:
 
 def recorded_rows(joint: str, steps: Sequence[Any], criteria: Criteria) -> List[str]:
     """Rows of the steps found in a recorded run: ``[(t, StepMetrics)]`` of one joint."""
-    return ['%-8s %5.1f %+8.3f %+8.3f %8s %9.1f%% %9s %+9.4f  %.2g rad  %s' % (
-        joint, t, m.start, m.target, rise_text(m), m.overshoot, fmt_time(m.settling_time),
-        m.steady_state_error, m.jitter, 'ok' if criteria.ok(m) else 'NOT ok')
-        for t, m in steps]
+    return [
+        '%-8s %5.1f %+8.3f %+8.3f %8s %9.1f%% %9s %+9.4f  %.2g rad  %s'
+        % (
+            joint,
+            t,
+            m.start,
+            m.target,
+            rise_text(m),
+            m.overshoot,
+            fmt_time(m.settling_time),
+            m.steady_state_error,
+            m.jitter,
+            'ok' if criteria.ok(m) else 'NOT ok',
+        )
+        for t, m in steps
+    ]

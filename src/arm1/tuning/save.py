@@ -1,4 +1,5 @@
 """Found gains into the parameter tree, and the tree into a controllers yaml."""
+
 from __future__ import annotations
 
 import copy
@@ -9,8 +10,12 @@ import yaml
 from .steps import Protocol, yaml_pid
 
 
-def with_gains(params: Mapping[str, Any], namespace: str, controllers: Mapping[str, str],
-               gains: Mapping[str, Mapping[str, Any]]) -> Dict[str, Any]:
+def with_gains(
+    params: Mapping[str, Any],
+    namespace: str,
+    controllers: Mapping[str, str],
+    gains: Mapping[str, Mapping[str, Any]],
+) -> Dict[str, Any]:
     """A copy of the parameter tree with each controller's ``pid`` replaced."""
     out: Dict[str, Any] = copy.deepcopy(dict(params))
     node = out

@@ -25,6 +25,7 @@ A run's score is its worse step's settling time when it meets the
 criteria, else the hold time plus penalties for how far it misses them, so that the
 search is led towards feasible gains even when it starts far from them.
 """
+
 from __future__ import annotations
 
 import math
@@ -69,10 +70,16 @@ class SearchSpace:
 
     def bounds(self) -> List[Tuple[float, float]]:
         """(low, high) of the four log10 coordinates of one joint: p, d, i, i_clamp."""
+
         def log(r: Tuple[float, float]) -> Tuple[float, float]:
             return math.log10(r[0]), math.log10(r[1])
-        return [log(self.p), log(self.d), (math.log10(self.i[0]) - 1.0, math.log10(self.i[1])),
-                log(self.i_clamp)]
+
+        return [
+            log(self.p),
+            log(self.d),
+            (math.log10(self.i[0]) - 1.0, math.log10(self.i[1])),
+            log(self.i_clamp),
+        ]
 
 
 @dataclass
@@ -91,8 +98,9 @@ class Candidate:
 UNSTEADY = 20.0  # score penalty for not settling or jitter: shaking is worse than overshoot
 
 
-def score(metrics: Sequence[StepMetrics], criteria: Criteria, hold: float,
-          others_jitter: float = 0.0) -> Score:
+def score(
+    metrics: Sequence[StepMetrics], criteria: Criteria, hold: float, others_jitter: float = 0.0
+) -> Score:
     """(feasible, score, worst StepMetrics, failures) of a run's step metrics; the other
     joints must be as still as the stepped one at the end of each hold.
 
@@ -161,12 +169,21 @@ class Evaluator:
 
 
 class GainSearch:
-    def __init__(self, evaluator: Optional[Evaluator], joints: Sequence[str],
-                 initial_gains: Mapping[str, Mapping[str, Any]],
-                 effort_limits: Mapping[str, Optional[float]], protocol: Optional[Protocol],
-                 criteria: Optional[Criteria] = None, space: Optional[SearchSpace] = None,
-                 generations: int = 14, population: int = 16, elite: int = 6, seed: int = 0,
-                 progress: Optional[Progress] = None) -> None:
+    def __init__(
+        self,
+        evaluator: Optional[Evaluator],
+        joints: Sequence[str],
+        initial_gains: Mapping[str, Mapping[str, Any]],
+        effort_limits: Mapping[str, Optional[float]],
+        protocol: Optional[Protocol],
+        criteria: Optional[Criteria] = None,
+        space: Optional[SearchSpace] = None,
+        generations: int = 14,
+        population: int = 16,
+        elite: int = 6,
+        seed: int = 0,
+        progress: Optional[Progress] = None,
+    ) -> None:
         self.evaluator = evaluator
         self.joints = list(joints)  # the tuned joints: their gains change, their runs are scored
         self.initial = {j: dict(g) for j, g in initial_gains.items()}
@@ -191,41 +208,53 @@ class GainSearch:
     def _encode(self, joint: str, g: Mapping[str, Any]) -> List[float]:
         (p0, p1), (d0, d1), (i0, i1), (c0, c1) = self.space.bounds()
         clamp = max(abs(g.get('i_clamp_max', 0.0)), abs(g.get('i_clamp_min', 0.0)))
-        return [_clip(math.log10(g['p']) if g['p'] > 0 else p0, p0, p1),
-                _clip(math.log10(g['d']) if g['d'] > 0 else d0, d0, d1),
-                _clip(math.log10(g['i']) if g['i'] > 0 else i0, i0, i1),
-                _clip(math.log10(clamp / self._limit(joint)) if clamp > 0
-                      else math.log10(0.05), c0, c1)]
+        return [
+            _clip(math.log10(g['p']) if g['p'] > 0 else p0, p0, p1),
+            _clip(math.log10(g['d']) if g['d'] > 0 else d0, d0, d1),
+            _clip(math.log10(g['i']) if g['i'] > 0 else i0, i0, i1),
+            _clip(
+                math.log10(clamp / self._limit(joint)) if clamp > 0 else math.log10(0.05), c0, c1
+            ),
+        ]
 
     def _decode(self, x: Sequence[float]) -> Gains:
         i_on = math.log10(self.space.i[0])
         bounds = self.space.bounds()
         gains = {j: dict(g) for j, g in self.initial.items()}
         for k, joint in enumerate(self.joints):
-            lp, ld, li, lc = (_clip(v, lo, hi) for v, (lo, hi) in zip(x[4 * k:4 * k + 4], bounds))
-            clamp = 10 ** lc * self._limit(joint)
+            lp, ld, li, lc = (_clip(v, lo, hi) for v, (lo, hi) in zip(x[4 * k : 4 * k + 4], bounds))
+            clamp = 10**lc * self._limit(joint)
             g = gains[joint]
-            g.update(p=10 ** lp, d=10 ** ld, i=10 ** li if li >= i_on else 0.0,
-                     i_clamp_max=clamp, i_clamp_min=-clamp, antiwindup=self.space.antiwindup)
+            g.update(
+                p=10**lp,
+                d=10**ld,
+                i=10**li if li >= i_on else 0.0,
+                i_clamp_max=clamp,
+                i_clamp_min=-clamp,
+                antiwindup=self.space.antiwindup,
+            )
             gains[joint] = _rounded(g)
         return gains
 
     # -- running ------------------------------------------------------------------
-    def evaluate(self, gain_sets: List[Gains], label: str = '',
-                 always: Iterable[int] = ()) -> List[Candidate]:
+    def evaluate(
+        self, gain_sets: List[Gains], label: str = '', always: Iterable[int] = ()
+    ) -> List[Candidate]:
         """Candidates for whole gain sets: every tuned joint's run from the first start pose,
         and from the other poses only for the sets steady at the first one, the two best
         and those whose index is in ``always`` (racing: a set that shakes at one pose need
         not be tried at more). The others' values are estimates (the first pose's sum
         once per pose): they steer the search but are never chosen as the best."""
         first = self._scores(gain_sets, [0], label)
-        cands = [Candidate(g, sum(r[1] for r in res.values()), res)
-                 for g, res in zip(gain_sets, first)]
+        cands = [
+            Candidate(g, sum(r[1] for r in res.values()), res) for g, res in zip(gain_sets, first)
+        ]
         if len(self.variants) < 2:
             return cands
         ranked = sorted(range(len(cands)), key=lambda n: cands[n].value)
-        more = sorted(set(ranked[:2]) | set(always) | {
-            n for n, c in enumerate(cands) if self.steady(c)})
+        more = sorted(
+            set(ranked[:2]) | set(always) | {n for n, c in enumerate(cands) if self.steady(c)}
+        )
         rest = self._scores([gain_sets[n] for n in more], range(1, len(self.variants)), None)
         for n, res in zip(more, rest):
             cands[n].results.update(res)
@@ -241,8 +270,9 @@ class GainSearch:
         which score folds into the worst step's), however far it overshoots."""
         return all(self.criteria.steady(r[2]) for r in c.results.values())
 
-    def _scores(self, gain_sets: List[Gains], poses: Iterable[int],
-                label: Optional[str]) -> List[Dict[Tuple[str, int], Score]]:
+    def _scores(
+        self, gain_sets: List[Gains], poses: Iterable[int], label: Optional[str]
+    ) -> List[Dict[Tuple[str, int], Score]]:
         """Per gain set, {(joint, pose index): score tuple} of the tuned joints' runs."""
         evaluator, protocol = self.evaluator, self.protocol
         assert evaluator is not None and protocol is not None, 'no evaluator or protocol'
@@ -250,12 +280,16 @@ class GainSearch:
         out = []
         step = max(1, evaluator.workers) * 2
         for n in range(0, len(gain_sets), step):
-            sets = gain_sets[n:n + step]
+            sets = gain_sets[n : n + step]
             results = evaluator.map([(j, g, self.variants[k]) for g in sets for j, k in keys])
             for m in range(len(sets)):
-                runs = results[m * len(keys):(m + 1) * len(keys)]
-                out.append({key: score(metrics, self.criteria, protocol.hold, jitter)
-                            for key, (metrics, _, jitter) in zip(keys, runs)})
+                runs = results[m * len(keys) : (m + 1) * len(keys)]
+                out.append(
+                    {
+                        key: score(metrics, self.criteria, protocol.hold, jitter)
+                        for key, (metrics, _, jitter) in zip(keys, runs)
+                    }
+                )
             if label is not None:
                 self.done += len(sets)
                 self.progress(self.done, self.total, label)
@@ -270,21 +304,28 @@ class GainSearch:
         spread = [(hi - lo) * self.space.spread for lo, hi in bounds]
         incumbent = {j: dict(g) for j, g in self.initial.items()}
         for g in range(self.generations):
-            xs = [[_clip(m + s * self.rng.gauss(0, 1), lo, hi)
-                   for m, s, (lo, hi) in zip(mean, spread, bounds)]
-                  for _ in range(self.population - (1 if g == 0 else 0))]
+            xs = [
+                [
+                    _clip(m + s * self.rng.gauss(0, 1), lo, hi)
+                    for m, s, (lo, hi) in zip(mean, spread, bounds)
+                ]
+                for _ in range(self.population - (1 if g == 0 else 0))
+            ]
             sets = ([incumbent] if g == 0 else []) + [self._decode(x) for x in xs]
             if g == 0:
                 xs = [list(mean)] + xs
             label = 'generation %d/%d  best %s' % (
-                g + 1, self.generations, self.describe(self.best))
+                g + 1,
+                self.generations,
+                self.describe(self.best),
+            )
             cands = self.evaluate(sets, label, always=[0] if g == 0 else [])
             order = sorted(range(len(cands)), key=lambda n: cands[n].value)
             complete = [c for c in cands if c.complete]
             top = min(complete, key=lambda c: c.value) if complete else None
             if top is not None and (self.best is None or top.value < self.best.value):
                 self.best = top
-            elite = [xs[n] for n in order[:self.elite]]
+            elite = [xs[n] for n in order[: self.elite]]
             for k in range(len(mean)):
                 values = [e[k] for e in elite]
                 m = sum(values) / len(values)
@@ -309,6 +350,7 @@ class GainSearch:
                 return 'ok'
             unsteady = not all(self.criteria.steady(r[2]) for r in rs)
             return '%.0f%%%s' % (max(r[2].overshoot for r in rs), ' unsteady' if unsteady else '')
+
         return ', '.join('%s %s' % (j, one(rs)) for j, rs in joints.items())
 
     @property

@@ -1,5 +1,6 @@
 """``tune`` on a simulated robot: measure the gains in force, search for better ones,
 check what was found in a fresh simulation, save it and plot both."""
+
 from __future__ import annotations
 
 import argparse
@@ -26,22 +27,43 @@ def selection_problem(rig: StepRig, joints: List[str], protocol: Protocol) -> Op
     unknown = [j for j in joints if j not in rig.controllers]
     if unknown:
         return 'no position controller for %s (have: %s)' % (
-            ', '.join(unknown), ', '.join(rig.joints))
+            ', '.join(unknown),
+            ', '.join(rig.joints),
+        )
     posed = sorted({j for v in protocol.variants() for j in v.start} - set(rig.hw.handles))
     if posed:
         return 'a start pose names %s, not an actuated joint of %s (have: %s)' % (
-            ', '.join(posed), rig.model.name, ', '.join(rig.joints))
+            ', '.join(posed),
+            rig.model.name,
+            ', '.join(rig.joints),
+        )
     return None
 
 
-def search_gains(setup: Setup, rig: StepRig, joints: List[str], current: Gains,
-                 evaluator: Evaluator, args: argparse.Namespace) -> Gains:
+def search_gains(
+    setup: Setup,
+    rig: StepRig,
+    joints: List[str],
+    current: Gains,
+    evaluator: Evaluator,
+    args: argparse.Namespace,
+) -> Gains:
     """The search's best gain set (progress on stderr); closes the evaluator."""
     effort = {j: rig.hw.handles[j].limits.effort for j in rig.joints}
     bar = SearchProgress(sys.stderr)
-    search = GainSearch(evaluator, joints, current, effort, setup.protocol, setup.criteria,
-                        SearchSpace(), args.generations, args.population, seed=args.seed,
-                        progress=bar)
+    search = GainSearch(
+        evaluator,
+        joints,
+        current,
+        effort,
+        setup.protocol,
+        setup.criteria,
+        SearchSpace(),
+        args.generations,
+        args.population,
+        seed=args.seed,
+        progress=bar,
+    )
     try:
         return search.run()
     finally:
@@ -49,15 +71,19 @@ def search_gains(setup: Setup, rig: StepRig, joints: List[str], current: Gains,
         evaluator.close()
 
 
-def check_gains(setup: Setup, rig: StepRig, joints: List[str], found: Gains
-                ) -> Tuple[Dict[str, Any], RunsByPose, Gains]:
+def check_gains(
+    setup: Setup, rig: StepRig, joints: List[str], found: Gains
+) -> Tuple[Dict[str, Any], RunsByPose, Gains]:
     """An independent check: a fresh simulation loaded from the parameters with ``found``.
     Returns those parameters, its runs and the gains it runs with."""
     params = with_gains(setup.params, rig.namespace, rig.controllers, found)
     check = setup.rig(params)
     try:
-        return params, measure_all(check, joints, setup.protocol), \
-            {j: dict(check.gains[j]) for j in check.joints}
+        return (
+            params,
+            measure_all(check, joints, setup.protocol),
+            {j: dict(check.gains[j]) for j in check.joints},
+        )
     finally:
         check.close()
 
@@ -73,22 +99,48 @@ def tune(args: argparse.Namespace, setup: Setup, out: IO[str]) -> int:
         if problem:
             print('tune: %s' % problem, file=sys.stderr)
             return 2
-        intro(rig.model.name, setup.urdf_path, setup.controllers_path, rig.namespace,
-              setup.protocol, setup.criteria, out)
+        intro(
+            rig.model.name,
+            setup.urdf_path,
+            setup.controllers_path,
+            rig.namespace,
+            setup.protocol,
+            setup.criteria,
+            out,
+        )
         current = {j: dict(rig.gains[j]) for j in rig.joints}
         before = measure_all(rig, joints, setup.protocol)
-        report('current gains (%s):' % setup.controllers_path, before, current, setup.criteria,
-               setup.protocol, out)
+        report(
+            'current gains (%s):' % setup.controllers_path,
+            before,
+            current,
+            setup.criteria,
+            setup.protocol,
+            out,
+        )
         after = None
         if evaluator is not None:
             found = search_gains(setup, rig, joints, current, evaluator, args)
             params, after, found_full = check_gains(setup, rig, joints, found)
-            report('found gains (%d runs in %.1f s), checked in a fresh simulation:' % (
-                evaluator.runs, time.monotonic() - t0), after, found_full, setup.criteria,
-                setup.protocol, out)
+            report(
+                'found gains (%d runs in %.1f s), checked in a fresh simulation:'
+                % (evaluator.runs, time.monotonic() - t0),
+                after,
+                found_full,
+                setup.criteria,
+                setup.protocol,
+                out,
+            )
             bad = failing(after, setup.criteria)
-            print('\n%s' % ('all joints meet the criteria' if not bad else
-                            'NOT met for %s: the best found is shown' % ', '.join(bad)), file=out)
+            print(
+                '\n%s'
+                % (
+                    'all joints meet the criteria'
+                    if not bad
+                    else 'NOT met for %s: the best found is shown' % ', '.join(bad)
+                ),
+                file=out,
+            )
             print('\n# for config/controllers.yaml (tune --search, seed %d):' % args.seed, file=out)
             print(snippet(rig.namespace, rig.controllers, found_full), file=out)
             if args.save:
@@ -96,9 +148,11 @@ def tune(args: argparse.Namespace, setup: Setup, out: IO[str]) -> int:
                 print('wrote %s' % args.save, file=out)
         if args.plot:
             from .plot import plot_runs
+
             # the first start pose's runs: one figure per joint, current against found
-            paths = plot_runs(args.plot, before[0], after[0] if after else None,
-                              setup.protocol.variants()[0])
+            paths = plot_runs(
+                args.plot, before[0], after[0] if after else None, setup.protocol.variants()[0]
+            )
             print('\nplots: %s' % ', '.join(paths), file=out)
         print('done in %.1f s' % (time.monotonic() - t0), file=out)
         return 0

@@ -21,6 +21,7 @@ the others 0, and the second is joint2 = 0.6, joint3 = 0.5 (elbow bent up), so n
 link touches the ground plane and no joint reaches a limit at either end of any
 step; step 0.3 rad, settle 0.5 s, hold 2 s (4.5 s of simulated time per run).
 """
+
 import copy
 import math
 from dataclasses import dataclass, field
@@ -50,15 +51,25 @@ class Protocol:
 
     def variants(self):
         """One single-pose Protocol per start pose, the main one first."""
-        return [Protocol(dict(pose), self.step, self.settle, self.hold)
-                for pose in [self.start] + list(self.poses)]
+        return [
+            Protocol(dict(pose), self.step, self.settle, self.hold)
+            for pose in [self.start] + list(self.poses)
+        ]
 
     def describe(self):
         poses = ['(%d) %s' % (k + 1, pose_text(p.start)) for k, p in enumerate(self.variants())]
-        return ('start pose%s: %s (at rest); hold %g s, step %g rad out (up unless that '
-                'leaves the joint range), hold %g s, step back, hold %g s' % (
-                    's' if self.poses else '', '; '.join(poses) if self.poses else
-                    pose_text(self.start), self.settle, self.step, self.hold, self.hold))
+        return (
+            'start pose%s: %s (at rest); hold %g s, step %g rad out (up unless that '
+            'leaves the joint range), hold %g s, step back, hold %g s'
+            % (
+                's' if self.poses else '',
+                '; '.join(poses) if self.poses else pose_text(self.start),
+                self.settle,
+                self.step,
+                self.hold,
+                self.hold,
+            )
+        )
 
 
 def pose_text(pose):
@@ -68,6 +79,7 @@ def pose_text(pose):
 @dataclass
 class StepRun:
     """One run of the protocol for one joint: samples of that joint and the two steps."""
+
     joint: str
     gains: dict
     times: list  # s since the run began
@@ -83,6 +95,7 @@ class StepRun:
 def gains_of(pid_params):
     """The ``pid`` parameter dict as the six gains the Pid uses (control_toolbox's rules)."""
     from ..control.pid import Pid
+
     return Pid.from_params(pid_params).gains()
 
 
@@ -123,11 +136,16 @@ class StepRig:
 
     def _spawn(self, urdf_xml, find_package, model_name):
         from ..description.urdf_model import parse_urdf
+
         name = model_name or parse_urdf(urdf_xml).name or 'robot'
         self.model = self.sim.spawn_urdf(
-            name, urdf_xml, find_package=find_package,
+            name,
+            urdf_xml,
+            find_package=find_package,
             controller_manager_factory=lambda hw, ns: ControllerManager(
-                hw, self.ros.node_handle, ns))
+                hw, self.ros.node_handle, ns
+            ),
+        )
         if self.model.controller_manager is None or self.model.hw is None:
             raise ValueError("robot '%s' has no gazebo_ros_control plugin: nothing to tune" % name)
         self.cm = self.model.controller_manager
@@ -152,9 +170,9 @@ class StepRig:
         """controller_manager's switch (it waits for an update, as in Gazebo)."""
         self.hw.read()
         # Updates of period 0 at the present time: no effort, no physics step.
-        ok, _ = switch_while_updating(self.cm, start, [],
-                                      lambda: self.cm.update(self.sim.time_ns, 0), STRICT,
-                                      deadline=None)
+        ok, _ = switch_while_updating(
+            self.cm, start, [], lambda: self.cm.update(self.sim.time_ns, 0), STRICT, deadline=None
+        )
         if not ok:
             raise RuntimeError('could not start the controllers %s' % ', '.join(start))
 
@@ -181,8 +199,10 @@ class StepRig:
         if hi is not None and out > hi:
             out = start - protocol.step
         if lo is not None and out < lo:
-            raise ValueError('%s: a %g rad step from %g does not fit in [%g, %g]'
-                             % (joint, protocol.step, start, lo, hi))
+            raise ValueError(
+                '%s: a %g rad step from %g does not fit in [%g, %g]'
+                % (joint, protocol.step, start, lo, hi)
+            )
         return start, out
 
     def restart(self, protocol, gains=None):
@@ -192,8 +212,11 @@ class StepRig:
             g = dict(self.gains[joint])
             g.update((gains or {}).get(joint, {}))
             self.controller(joint).set_gains(g)  # applied at the next update, as a reconfigure
-        pose = {j: float(protocol.start.get(j, 0.0)) for j in self.model.robot.joint_index
-                if j in self.hw.handles}
+        pose = {
+            j: float(protocol.start.get(j, 0.0))
+            for j in self.model.robot.joint_index
+            if j in self.hw.handles
+        }
         self.sim.set_model_configuration(self.model.name, list(pose), list(pose.values()))
         self.hw.read()
         # gazebo_ros_control's reset: stop and start the running controllers
@@ -221,8 +244,11 @@ class StepRig:
         aborted = False
         n_final = int(round(FINAL_WINDOW / dt))
         others_jitter = 0.0
-        for phase, target, n in (('settle', start, n_settle), ('out', out, n_hold),
-                                 ('back', start, n_hold)):
+        for phase, target, n in (
+            ('settle', start, n_settle),
+            ('out', out, n_hold),
+            ('back', start, n_hold),
+        ):
             if phase != 'settle':
                 steps.append((phase, k * dt, handle.position, target))
                 self.ros.publish(topic, target)
@@ -245,19 +271,24 @@ class StepRig:
                         lo_o[i] = h.position
                     elif h.position > hi_o[i]:
                         hi_o[i] = h.position
-                if abort is not None and phase != 'settle' and not k % 50 and \
-                        abort(k * dt, handle.position, out):
+                if (
+                    abort is not None
+                    and phase != 'settle'
+                    and not k % 50
+                    and abort(k * dt, handle.position, out)
+                ):
                     aborted = True
                     break
             if tail_lo is not None and tail_hi is not None:
-                others_jitter = max([others_jitter] + [h - l for h, l in zip(tail_hi, tail_lo)])
+                others_jitter = max([others_jitter] + [hi - lo for hi, lo in zip(tail_hi, tail_lo)])
             if aborted:
                 break
-        wobble = max([h - l for h, l in zip(hi_o, lo_o)] or [0.0])
+        wobble = max([hi - lo for hi, lo in zip(hi_o, lo_o)] or [0.0])
         used = dict(self.gains[joint])
         used.update(gains or {})
-        run = StepRun(joint, used, times, positions, efforts, steps, wobble, others_jitter,
-                      aborted=aborted)
+        run = StepRun(
+            joint, used, times, positions, efforts, steps, wobble, others_jitter, aborted=aborted
+        )
         if not aborted:
             run.metrics = measure(run)
         return run
