@@ -104,6 +104,8 @@ class FakeRobot:
         self.joint_index = {n: i for i, n in enumerate(joint_names)}
         self.state = {i: (0.0, 0.0) for i in self.joint_index.values()}
         self.applied: List[Tuple[List[int], List[float]]] = []  # per write
+        self.motors: List[Tuple[List[int], List[float], List[float]]] = []  # velocity motors
+        self.placed: List[Tuple[List[int], List[float]]] = []  # set_positions, per write
 
     def indices(self, names: Sequence[str]) -> List[int]:
         return [self.joint_index[n] for n in names]
@@ -113,6 +115,13 @@ class FakeRobot:
 
     def apply_efforts(self, indices: Sequence[int], efforts: Sequence[float]) -> None:
         self.applied.append((list(indices), list(efforts)))
+
+    def set_velocity_motors(self, indices: Sequence[int], velocities: Sequence[float],
+                            max_forces: Sequence[float]) -> None:
+        self.motors.append((list(indices), list(velocities), list(max_forces)))
+
+    def set_positions(self, indices: Sequence[int], positions: Sequence[float]) -> None:
+        self.placed.append((list(indices), list(positions)))
 
     def set(self, name: str, position: float, velocity: float = 0.0) -> None:
         self.state[self.joint_index[name]] = (position, velocity)

@@ -80,10 +80,11 @@ def mixed_hw():
     return DefaultRobotHWSim(model, robot), robot
 
 
-def test_hw_exposes_effort_joints_sorted_and_leaves_other_interfaces_passive(mixed_hw):
+def test_hw_exposes_every_transmission_joint_sorted_with_its_interface(mixed_hw):
     hw, _ = mixed_hw
-    assert hw.joint_names() == ['flap_joint', 'slider_joint', 'wheel_joint']
-    assert 'passive_joint' not in hw.handles
+    assert hw.joint_names() == ['flap_joint', 'passive_joint', 'slider_joint', 'wheel_joint']
+    assert hw.handles['passive_joint'].interface == 'hardware_interface/PositionJointInterface'
+    assert hw.handles['wheel_joint'].interface == EFFORT_JOINT_INTERFACE
     assert hw.handles['wheel_joint'].type == 'continuous'
     assert hw.handles['slider_joint'].limits.upper == pytest.approx(0.2)
 
@@ -115,14 +116,15 @@ def test_hw_read_and_saturated_write(mixed_hw):
     hw.handles['wheel_joint'].command = 0.7
     hw.write()
     indices, efforts = robot.applied[-1]
-    assert indices == robot.indices(hw.joint_names())
-    by_name = dict(zip(hw.joint_names(), efforts))
+    effort_joints = ['flap_joint', 'slider_joint', 'wheel_joint']
+    assert indices == robot.indices(effort_joints)
+    by_name = dict(zip(effort_joints, efforts))
     assert by_name == {'flap_joint': 1.0, 'slider_joint': 0.0, 'wheel_joint': 0.0}
     # the handle's effort reports what was applied
     assert hw.handles['flap_joint'].effort == 1.0
     hw.handles['slider_joint'].command = -30.0
     hw.handles['wheel_joint'].command = math.nan
     hw.write()
-    by_name = dict(zip(hw.joint_names(), robot.applied[-1][1]))
+    by_name = dict(zip(effort_joints, robot.applied[-1][1]))
     assert by_name['slider_joint'] == -10.0
     assert by_name['wheel_joint'] == 0.0

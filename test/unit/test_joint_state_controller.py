@@ -67,10 +67,10 @@ def test_names_are_alphabetical_with_position_velocity_effort_for_each():
     hw.write()
     run(c, 1)
     m = ros.messages('/mixed_ns/joint_states')[0]
-    assert m['name'] == ['flap_joint', 'slider_joint', 'wheel_joint']
-    assert m['position'] == [0.0, 0.0, 1.0]
-    assert m['velocity'] == [0.0, 0.0, 2.0]
-    assert m['effort'] == [0.0, 0.0, 0.5]
+    assert m['name'] == ['flap_joint', 'passive_joint', 'slider_joint', 'wheel_joint']
+    assert m['position'] == [0.0, 0.0, 0.0, 1.0]
+    assert m['velocity'] == [0.0, 0.0, 0.0, 2.0]
+    assert m['effort'] == [0.0, 0.0, 0.0, 0.5]
     assert c.claimed_resources() == []  # reads only
 
 
@@ -87,7 +87,7 @@ def test_extra_joints_are_appended():
     m = ros.messages('/mixed_ns/joint_states')[0]
     assert m['name'][-1] == 'gripper'
     assert (m['position'][-1], m['velocity'][-1], m['effort'][-1]) == (0.25, 0.0, 0.0)
-    assert len(m['name']) == len(m['position']) == len(m['velocity']) == len(m['effort']) == 4
+    assert len(m['name']) == len(m['position']) == len(m['velocity']) == len(m['effort']) == 5
 
 
 def test_fifty_hz_over_ten_thousand_one_ms_steps_without_drift():

@@ -265,10 +265,11 @@ def test_set_model_configuration(arm1):
 # ----------------------------------------------------------------------------- another robot
 def test_mixed_robot_namespace_and_joints(mixed):
     assert mixed.model.namespace == '/mixed_ns'  # the plugin's, not the spawn argument
-    assert mixed.model.hw.joint_names() == ['flap_joint', 'slider_joint', 'wheel_joint']
+    names = ['flap_joint', 'passive_joint', 'slider_joint', 'wheel_joint']
+    assert mixed.model.hw.joint_names() == names
     run(mixed.sim, 0.05)
     m = mixed.joint_states()[-1]
-    assert m['name'] == ['flap_joint', 'slider_joint', 'wheel_joint']
+    assert m['name'] == names
 
 
 def test_continuous_joint_takes_the_short_way_across_pi(mixed):
@@ -308,9 +309,12 @@ def test_revolute_joint_goes_the_long_way_inside_its_limits(mixed):
     assert highest < 3.0 + SETTLE  # it never crossed +pi
 
 
-def test_passive_joint_is_not_driven(mixed):
-    assert 'passive_joint' not in mixed.model.hw.handles
-    assert 'passive_joint' in mixed.model.robot.joint_index
+def test_a_position_interface_joint_without_a_controller_is_held_at_its_command_zero(mixed):
+    # Its transmission says PositionJointInterface and there are no pid gains: the joint is
+    # set to the command (0 until a controller writes one), as Gazebo's SetPosition does.
+    mixed.sim.set_model_configuration('mixed', ['passive_joint'], [0.5])
+    run(mixed.sim, 1.0)
+    assert positions(mixed.model)['passive_joint'] == pytest.approx(0.0, abs=1e-6)
 
 
 # ----------------------------------------------------------------------------- spawn rules

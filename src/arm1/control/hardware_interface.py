@@ -6,13 +6,23 @@ import math
 from dataclasses import dataclass, field
 from typing import Tuple
 
-from ..description.joint_limits import EFFORT_JOINT_INTERFACE, JointLimits
+from ..description.joint_limits import (
+    EFFORT_JOINT_INTERFACE,
+    POSITION_JOINT_INTERFACE,
+    VELOCITY_JOINT_INTERFACE,
+    JointLimits,
+)
+
+__all__ = ['EFFORT_JOINT_INTERFACE', 'POSITION_JOINT_INTERFACE', 'VELOCITY_JOINT_INTERFACE',
+           'JointHandle', 'JointLimits', 'SaturationBounds', 'saturation_bounds',
+           'enforce_effort_limits', 'saturate_effort']
 
 
 @dataclass
 class JointHandle:
     """One joint of the hardware: its state, read from the simulation, and ``command``, the
-    hardware command a controller writes (ros_control's setCommand: an effort here)."""
+    hardware command a controller writes (ros_control's setCommand), in the unit of the
+    joint's ``interface``: an effort, a position or a velocity."""
     name: str
     type: str  # 'revolute', 'continuous' or 'prismatic'
     limits: JointLimits = field(default_factory=JointLimits)

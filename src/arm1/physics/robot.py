@@ -58,6 +58,22 @@ class Robot:
         p.setJointMotorControlArray(self.body, indices, p.TORQUE_CONTROL, forces=efforts,
                                     physicsClientId=self.client)
 
+    def set_velocity_motors(self, indices, velocities, max_forces):
+        """Velocity motors (VELOCITY_CONTROL lasts until changed; a max force 0 turns one off)."""
+        if not indices:
+            return
+        p.setJointMotorControlArray(self.body, indices, p.VELOCITY_CONTROL,
+                                    targetVelocities=velocities, forces=max_forces,
+                                    physicsClientId=self.client)
+
+    def set_positions(self, indices, positions):
+        """Put joints there, at rest, for the next step (Gazebo's Joint::SetPosition)."""
+        if not indices:
+            return
+        p.resetJointStatesMultiDof(self.body, indices, targetValues=[[v] for v in positions],
+                                   targetVelocities=[[0.0]] * len(indices),
+                                   physicsClientId=self.client)
+
     def set_joint_positions(self, positions):
         """``{joint name: position}``, at rest."""
         for name, value in positions.items():

@@ -92,6 +92,10 @@ class GazeboRosApi:
                     'controller manager namespace %s is not a legal ROS name'
                     % shown(model.namespace)
                 )
+            # The hardware's own PIDs for position/velocity joints, as DefaultRobotHWSim reads them.
+            ns = model.namespace.rstrip('/')
+            gains = rospy.get_param(ns + '/gazebo_ros_control/pid_gains', {})
+            model.hw.set_pid_gains(gains if isinstance(gains, dict) else {})
             services = ControllerManagerServices(model.hw, model.namespace)
             model.controller_manager = services.manager
             model.plugins.append(services)

@@ -1,26 +1,48 @@
 """gazebo_ros_control's DefaultRobotHWSim: joint handles bound to a simulated robot.
 
-The actuated joints are those the URDF's transmissions name; each is read from
-the physics every update and driven by the saturated effort its controller wrote.
+The actuated joints are those the URDF's transmissions name. Each is read from the
+physics when the controllers update and written every physics step, as its
+transmission's hardware interface says (default_robot_hw_sim.cpp's writeSim):
+
+- EffortJointInterface: the saturated effort.
+- PositionJointInterface: the command, clamped to the position limits and to a
+  max_velocity step from the previous one; without pid gains the joint is set there
+  (Gazebo's SetPosition, a teleport), with them a PID turns the error into effort.
+- VelocityJointInterface: the command, clamped to +-max_velocity; without pid gains a
+  velocity motor capped at the effort limit (Gazebo's SetParam("vel")), with them a PID.
+
+The pid gains are ``<robotNamespace>/gazebo_ros_control/pid_gains/<joint>``: the ROS
+layer reads them and hands them in as a plain dict (set_pid_gains).
 """
+
 from __future__ import annotations
 
 import logging
-from typing import TYPE_CHECKING, Dict, List, Optional, Protocol, Sequence, Tuple
+import math
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Protocol, Sequence, Tuple
 
+from ..control.angles import shortest_angular_distance, shortest_angular_distance_with_large_limits
 from ..control.controller import ControllerError
 from ..control.hardware_interface import (
     EFFORT_JOINT_INTERFACE,
+    POSITION_JOINT_INTERFACE,
+    VELOCITY_JOINT_INTERFACE,
     JointHandle,
     SaturationBounds,
     saturate_effort,
     saturation_bounds,
 )
+from ..control.pid import Pid, PidConfigError
 
 if TYPE_CHECKING:
     from ..description.urdf_model import RobotModel
 
 log = logging.getLogger('arm1.control')
+
+SIMULATED_INTERFACES = (EFFORT_JOINT_INTERFACE, POSITION_JOINT_INTERFACE, VELOCITY_JOINT_INTERFACE)
+DEFAULT_PERIOD = 0.001  # s between writes: Gazebo's default max_step_size
+# A motor force bullet can apply when the joint has no effort limit (Gazebo's DBL_MAX).
+UNLIMITED_MOTOR_FORCE = 1e6
 
 
 class SimulatedJoints(Protocol):
@@ -34,24 +56,143 @@ class SimulatedJoints(Protocol):
 
     def apply_efforts(self, indices: Sequence[int], efforts: Sequence[float]) -> None: ...
 
+    def set_velocity_motors(
+        self, indices: Sequence[int], velocities: Sequence[float], max_forces: Sequence[float]
+    ) -> None:
+        """Velocity motors that last until changed (max force 0 switches one off)."""
+        ...
+
+    def set_positions(self, indices: Sequence[int], positions: Sequence[float]) -> None:
+        """Put the joints there, at rest, for the next step."""
+        ...
+
+
+class _Drive:
+    """How one joint is written: its mode, limits and, for the PID modes, its PID."""
+
+    __slots__ = ('handle', 'index', 'bounds', 'pid', 'prev_cmd', 'wrapped')
+
+    def __init__(self, handle: JointHandle, index: int) -> None:
+        self.handle, self.index = handle, index
+        self.bounds: SaturationBounds = saturation_bounds(handle.limits)
+        self.pid: Optional[Pid] = None
+        self.prev_cmd = math.nan  # position saturation: the last command written
+        lower, upper = self.bounds[1], self.bounds[2]
+        # A revolute position error wraps only when its range spans a turn or more; within a
+        # narrower range the plain difference is what the angles package gives.
+        self.wrapped = handle.type == 'continuous' or (
+            handle.type == 'revolute' and upper - lower >= 2 * math.pi
+        )
+
+    def position_error(self, command: float) -> float:
+        h = self.handle
+        if h.type == 'continuous':
+            return shortest_angular_distance(h.position, command)
+        if self.wrapped:
+            return shortest_angular_distance_with_large_limits(
+                h.position, command, self.bounds[1], self.bounds[2]
+            )[0]
+        return command - h.position
+
+    def saturate_position(self, dt: float) -> float:
+        """joint_limits_interface's PositionJointSaturationHandle: within the range and one
+        max_velocity step of the previous command (first: of the measured position)."""
+        h = self.handle
+        _, lower, upper, max_velocity = self.bounds
+        if math.isnan(self.prev_cmd):
+            self.prev_cmd = h.position
+        cmd = h.command if math.isfinite(h.command) else self.prev_cmd
+        step = max_velocity * dt
+        cmd = min(max(cmd, max(self.prev_cmd - step, lower)), min(self.prev_cmd + step, upper))
+        self.prev_cmd = cmd
+        return cmd
+
+    def saturate_velocity(self) -> float:
+        """VelocityJointSaturationHandle: +-max_velocity."""
+        max_velocity = self.bounds[3]
+        cmd = self.handle.command if math.isfinite(self.handle.command) else 0.0
+        return min(max(cmd, -max_velocity), max_velocity)
+
 
 class DefaultRobotHWSim:
-    """A RobotHWSim (control/interfaces.py) with an effort interface for each actuated joint."""
+    """A RobotHWSim (control/interfaces.py): each actuated joint offers the interface its
+    transmission names."""
 
-    def __init__(self, description: RobotModel, robot: SimulatedJoints) -> None:
+    def __init__(
+        self,
+        description: RobotModel,
+        robot: SimulatedJoints,
+        period: float = DEFAULT_PERIOD,
+        pid_gains: Optional[Mapping[str, Any]] = None,
+    ) -> None:
+        """``period``: seconds between writes (the physics step); ``pid_gains``: joint ->
+        gains dict, the parameters under ``gazebo_ros_control/pid_gains``."""
         self.robot = robot
+        self.period = period
         self.handles: Dict[str, JointHandle] = {}
         for joint, interface in description.actuated_joints():
-            if interface != EFFORT_JOINT_INTERFACE:
-                log.error("joint '%s': hardware interface '%s' is not simulated (only %s); "
-                          'the joint is left passive', joint.name, interface,
-                          EFFORT_JOINT_INTERFACE)
+            if interface not in SIMULATED_INTERFACES:
+                log.error(
+                    "No matching hardware interface found for '%s' while loading interfaces "
+                    "for %s; the joint is left passive (simulated: %s)",
+                    interface,
+                    joint.name,
+                    ', '.join(SIMULATED_INTERFACES),
+                )
                 continue
             self.handles[joint.name] = JointHandle(joint.name, joint.type, joint.limits, interface)
         self._ordered = [self.handles[n] for n in sorted(self.handles)]
         self._indices = robot.indices([h.name for h in self._ordered])
-        self._bounds: List[Tuple[JointHandle, SaturationBounds]] = [
-            (h, saturation_bounds(h.limits)) for h in self._ordered]
+        self._drives = [_Drive(h, i) for h, i in zip(self._ordered, self._indices)]
+        self.set_pid_gains(pid_gains or {})
+
+    def set_pid_gains(self, pid_gains: Mapping[str, Any]) -> None:
+        """Position and velocity joints with gains (a dict with ``p``) get a PID to effort;
+        the others are set directly. Bad gains name the joint and leave it set directly."""
+        for d in self._drives:
+            if d.handle.interface == EFFORT_JOINT_INTERFACE:
+                continue
+            d.pid = None
+            gains = pid_gains.get(d.handle.name)
+            if gains is not None:
+                try:
+                    d.pid = Pid.from_params(gains, 'gazebo_ros_control/pid_gains/' + d.handle.name)
+                except PidConfigError as exc:
+                    log.error(
+                        "joint '%s': %s; the joint is driven without a PID", d.handle.name, exc
+                    )
+        self._plan()
+
+    def _plan(self) -> None:
+        """Group the joints by how they are written, so that each step makes one call per kind."""
+        self._torque = [
+            d
+            for d in self._drives
+            if d.handle.interface == EFFORT_JOINT_INTERFACE or d.pid is not None
+        ]
+        self._torque_indices = [d.index for d in self._torque]
+        self._teleported = [
+            d
+            for d in self._drives
+            if d.pid is None and d.handle.interface == POSITION_JOINT_INTERFACE
+        ]
+        self._motored = [
+            d
+            for d in self._drives
+            if d.pid is None and d.handle.interface == VELOCITY_JOINT_INTERFACE
+        ]
+        motor_force = {
+            d.index: min(d.bounds[0], UNLIMITED_MOTOR_FORCE)
+            for d in self._teleported + self._motored
+        }
+        self._motor_forces = [motor_force[d.index] for d in self._motored]
+        # Gazebo gives a set joint's motor fmax = the effort limit (a brake between teleports);
+        # joints driven by effort must have theirs off, or it would fight the effort.
+        indices = [d.index for d in self._drives if d.handle.interface != EFFORT_JOINT_INTERFACE]
+        if indices:
+            self.robot.set_velocity_motors(
+                indices, [0.0] * len(indices), [motor_force.get(i, 0.0) for i in indices]
+            )
 
     def joint_names(self) -> List[str]:
         """Sorted, as hardware_interface's std::map gives them."""
@@ -62,10 +203,13 @@ class DefaultRobotHWSim:
         if handle is None:
             raise ControllerError(
                 "joint '%s' (from %s/joint) is not an actuated joint of the robot; known joints: %s"
-                % (name, controller_ns, ', '.join(self.joint_names()) or 'none'))
+                % (name, controller_ns, ', '.join(self.joint_names()) or 'none')
+            )
         if interface is not None and interface != handle.interface:
-            raise ControllerError("joint '%s' offers %s, not %s"
-                                  % (name, handle.interface, interface))
+            raise ControllerError(
+                "Could not find resource '%s' in '%s' (%s): its transmission names %s"
+                % (name, interface.replace('/', '::'), controller_ns, handle.interface)
+            )
         return handle
 
     def read(self) -> None:
@@ -73,8 +217,36 @@ class DefaultRobotHWSim:
             h.position, h.velocity = pos, vel
 
     def write(self) -> None:
+        dt = self.period
         efforts = []
-        for h, bounds in self._bounds:
-            h.effort = effort = saturate_effort(h.command, h.position, h.velocity, *bounds)
+        for d in self._torque:
+            h = d.handle
+            if h.interface == EFFORT_JOINT_INTERFACE:
+                effort = saturate_effort(h.command, h.position, h.velocity, *d.bounds)
+            else:
+                assert d.pid is not None
+                if h.interface == POSITION_JOINT_INTERFACE:
+                    h.command = cmd = d.saturate_position(dt)
+                    error = d.position_error(cmd)
+                else:
+                    h.command = cmd = d.saturate_velocity()
+                    error = cmd - h.velocity
+                limit = d.bounds[0]
+                effort = min(max(d.pid.compute_command(error, dt), -limit), limit)
+            h.effort = effort
             efforts.append(effort)
-        self.robot.apply_efforts(self._indices, efforts)
+        self.robot.apply_efforts(self._torque_indices, efforts)
+        if self._teleported:
+            positions = []
+            for d in self._teleported:
+                d.handle.command = cmd = d.saturate_position(dt)
+                positions.append(cmd)
+            self.robot.set_positions([d.index for d in self._teleported], positions)
+        if self._motored:
+            velocities = []
+            for d in self._motored:
+                d.handle.command = cmd = d.saturate_velocity()
+                velocities.append(cmd)
+            self.robot.set_velocity_motors(
+                [d.index for d in self._motored], velocities, self._motor_forces
+            )

@@ -173,7 +173,7 @@ class Simulation:
             return
         ns = plugin.robot_namespace or robot_namespace or model.name
         model.namespace = '/' + ns.strip('/')
-        model.hw = DefaultRobotHWSim(model.description, model.robot)
+        model.hw = DefaultRobotHWSim(model.description, model.robot, self.period)
         if factory is not None:
             model.controller_manager = factory(model.hw, model.namespace)
 
