@@ -23,7 +23,7 @@ PARAMS = {'mixed_ns': {
     'flap_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 1.0}},
     'flap_other_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 5.0}},
     'no_type_controller': {'joint': 'flap_joint', 'pid': {'p': 1.0}},
-    'bad_type_controller': {'type': 'velocity_controllers/JointVelocityController',
+    'bad_type_controller': {'type': 'velocity_controllers/JointPositionController',
                             'joint': 'flap_joint'},
     'bad_joint_controller': {'type': JPC, 'joint': 'elbow_joint', 'pid': {'p': 1.0}},
     'passive_controller': {'type': JPC, 'joint': 'passive_joint', 'pid': {'p': 1.0}},
@@ -49,7 +49,18 @@ def states(cm):
 # ----------------------------------------------------------------------------- load
 def test_controller_types():
     cm = ControllerManager(None, FakeRos().node_handle, '/x')
-    assert cm.controller_types() == [JPC, 'effort_controllers/JointTrajectoryController', JSC]
+    assert cm.controller_types() == [
+        'effort_controllers/JointEffortController',
+        'effort_controllers/JointGroupEffortController',
+        JPC,
+        'effort_controllers/JointTrajectoryController',
+        'effort_controllers/JointVelocityController',
+        JSC,
+        'position_controllers/JointGroupPositionController',
+        'position_controllers/JointPositionController',
+        'velocity_controllers/JointGroupVelocityController',
+        'velocity_controllers/JointVelocityController',
+    ]
 
 
 def test_load_lists_name_type_state_and_claimed_resources(rig):
@@ -83,7 +94,7 @@ def test_unknown_type_message_names_the_type(rig):
     cm, _, _, _ = rig
     with pytest.raises(ControllerManagerError) as exc:
         cm.load_controller('bad_type_controller')
-    assert 'velocity_controllers/JointVelocityController' in str(exc.value)
+    assert 'velocity_controllers/JointPositionController' in str(exc.value)
     assert 'bad_type_controller' in str(exc.value)
 
 

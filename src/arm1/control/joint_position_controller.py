@@ -136,12 +136,15 @@ class JointPositionController(Controller):
             return shortest_angular_distance(j.position, set_point)
         return set_point - j.position
 
-    def update(self, time_ns: int, period_ns: int) -> None:
+    def _apply_pending_gains(self) -> None:
         if self._pending_gains is not None:
             with self._gains_lock:
                 gains, self._pending_gains = self._pending_gains, None
             self.pid.set_gains(gains['p'], gains['i'], gains['d'], gains['i_clamp_max'],
                                gains['i_clamp_min'], gains['antiwindup'])
+
+    def update(self, time_ns: int, period_ns: int) -> None:
+        self._apply_pending_gains()
         set_point = min(max(self.target, self._lower), self._upper)
         error = set_point - self.joint.position if self._plain_error else self.error(set_point)
         dt = period_ns * 1e-9  # the PID works in seconds, as control_toolbox's does

@@ -9,14 +9,18 @@ from __future__ import annotations
 from typing import Dict, Tuple, Type
 
 from .controller import Controller
+from .forward_command_controller import FORWARD_CONTROLLERS
 from .joint_position_controller import JointPositionController
 from .joint_state_controller import JointStateController
 from .joint_trajectory_controller import JointTrajectoryController
+from .joint_velocity_controller import JointVelocityController
 
 CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = (
     JointPositionController,
     JointStateController,
     JointTrajectoryController,
+    JointVelocityController,
+    *FORWARD_CONTROLLERS,
 )
 
 

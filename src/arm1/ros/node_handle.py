@@ -13,7 +13,7 @@ from typing import Any, Callable, Dict, List, Tuple
 import rospy
 from control_msgs.msg import JointControllerState, JointTrajectoryControllerState
 from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64
+from std_msgs.msg import Float64, Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from ..control.interfaces import Fields, Params
@@ -106,6 +106,7 @@ MESSAGES: Dict[str, Tuple[type, Fill]] = {
     'sensor_msgs/JointState': (JointState, _fill_stamped),
     'control_msgs/JointControllerState': (JointControllerState, _fill_stamped),
     'std_msgs/Float64': (Float64, _fill_data),
+    'std_msgs/Float64MultiArray': (Float64MultiArray, _fill_data),
     'control_msgs/JointTrajectoryControllerState': (JointTrajectoryControllerState,
                                                     _fill_trajectory_state),
     'trajectory_msgs/JointTrajectory': (JointTrajectory, _fill_stamped),
