@@ -1,6 +1,7 @@
 """The forward command controllers (control/forward_command_controller.py) and
 effort_controllers/JointVelocityController (control/joint_velocity_controller.py): each
 controller's update rule, start value, topics and error messages, against ros_controllers."""
+
 import logging
 import math
 
@@ -27,15 +28,26 @@ def joint(name, kind='revolute', limit='lower="-1" upper="1" effort="5" velocity
 
 
 # One joint per interface, and a second of each for the group controllers.
-URDF = ('<robot name="iface"><link name="world"/>' + box_link('base')
-        + ''.join(box_link(n + '_link') for n in ('p1', 'p2', 'v1', 'v2', 'e1', 'e2'))
-        + '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>'
-        + joint('p1') + joint('p2') + joint('v1', 'continuous', 'effort="3" velocity="4"')
-        + joint('v2') + joint('e1') + joint('e2')
-        + transmission('p1', POS) + transmission('p2', 'PositionJointInterface')
-        + transmission('v1', VEL) + transmission('v2', VEL)
-        + transmission('e1', EFF) + transmission('e2', EFF)
-        + control_plugin(NS) + '</robot>')
+URDF = (
+    '<robot name="iface"><link name="world"/>'
+    + box_link('base')
+    + ''.join(box_link(n + '_link') for n in ('p1', 'p2', 'v1', 'v2', 'e1', 'e2'))
+    + '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>'
+    + joint('p1')
+    + joint('p2')
+    + joint('v1', 'continuous', 'effort="3" velocity="4"')
+    + joint('v2')
+    + joint('e1')
+    + joint('e2')
+    + transmission('p1', POS)
+    + transmission('p2', 'PositionJointInterface')
+    + transmission('v1', VEL)
+    + transmission('v2', VEL)
+    + transmission('e1', EFF)
+    + transmission('e2', EFF)
+    + control_plugin(NS)
+    + '</robot>'
+)
 
 
 class Rig:
@@ -71,15 +83,18 @@ class Rig:
 
 
 # ----------------------------------------------------------------------------- registry
-@pytest.mark.parametrize('type_name, interface', [
-    ('position_controllers/JointPositionController', POS),
-    ('velocity_controllers/JointVelocityController', VEL),
-    ('effort_controllers/JointEffortController', EFF),
-    ('position_controllers/JointGroupPositionController', POS),
-    ('velocity_controllers/JointGroupVelocityController', VEL),
-    ('effort_controllers/JointGroupEffortController', EFF),
-    ('effort_controllers/JointVelocityController', EFF),
-])
+@pytest.mark.parametrize(
+    'type_name, interface',
+    [
+        ('position_controllers/JointPositionController', POS),
+        ('velocity_controllers/JointVelocityController', VEL),
+        ('effort_controllers/JointEffortController', EFF),
+        ('position_controllers/JointGroupPositionController', POS),
+        ('velocity_controllers/JointGroupVelocityController', VEL),
+        ('effort_controllers/JointGroupEffortController', EFF),
+        ('effort_controllers/JointVelocityController', EFF),
+    ],
+)
 def test_each_type_is_registered_with_its_interface(type_name, interface):
     assert CONTROLLER_TYPES[type_name].interface == interface
 
@@ -107,10 +122,13 @@ def test_forward_controllers_do_not_clamp_the_command():
     assert rig.cmd('p1') == 5.0
 
 
-@pytest.mark.parametrize('type_name, name', [
-    ('velocity_controllers/JointVelocityController', 'v1'),
-    ('effort_controllers/JointEffortController', 'e1'),
-])
+@pytest.mark.parametrize(
+    'type_name, name',
+    [
+        ('velocity_controllers/JointVelocityController', 'v1'),
+        ('effort_controllers/JointEffortController', 'e1'),
+    ],
+)
 def test_velocity_and_effort_controllers_start_at_zero_and_forward(type_name, name):
     rig = Rig(type_name, joint=name)
     rig.at(name, 0.4, 1.5)
@@ -148,16 +166,20 @@ def test_single_joint_controller_without_joint_names_its_namespace():
         Rig('position_controllers/JointPositionController')
 
 
-@pytest.mark.parametrize('type_name, name, interface', [
-    ('position_controllers/JointPositionController', 'e1', 'PositionJointInterface'),
-    ('velocity_controllers/JointVelocityController', 'p1', 'VelocityJointInterface'),
-    ('effort_controllers/JointEffortController', 'v1', 'EffortJointInterface'),
-])
+@pytest.mark.parametrize(
+    'type_name, name, interface',
+    [
+        ('position_controllers/JointPositionController', 'e1', 'PositionJointInterface'),
+        ('velocity_controllers/JointVelocityController', 'p1', 'VelocityJointInterface'),
+        ('effort_controllers/JointEffortController', 'v1', 'EffortJointInterface'),
+    ],
+)
 def test_a_joint_of_another_interface_fails_the_load(type_name, name, interface):
     with pytest.raises(ControllerError) as exc:
         Rig(type_name, joint=name)
-    assert ("Could not find resource '%s' in 'hardware_interface::%s'" % (name, interface)
-            in str(exc.value))
+    assert "Could not find resource '%s' in 'hardware_interface::%s'" % (name, interface) in str(
+        exc.value
+    )
     assert '/iface/c' in str(exc.value)
 
 
@@ -175,10 +197,13 @@ def test_group_position_controller_starts_at_positions_and_maps_data_to_joints_i
     assert rig.c.claimed_resources() == [(POS, ['p2', 'p1'])]
 
 
-@pytest.mark.parametrize('type_name, names', [
-    ('velocity_controllers/JointGroupVelocityController', ['v1', 'v2']),
-    ('effort_controllers/JointGroupEffortController', ['e1', 'e2']),
-])
+@pytest.mark.parametrize(
+    'type_name, names',
+    [
+        ('velocity_controllers/JointGroupVelocityController', ['v1', 'v2']),
+        ('effort_controllers/JointGroupEffortController', ['e1', 'e2']),
+    ],
+)
 def test_group_velocity_and_effort_controllers_start_at_zeros(type_name, names):
     rig = Rig(type_name, joints=names)
     rig.at(names[0], 0.3, 2.0)
@@ -199,15 +224,20 @@ def test_group_command_of_the_wrong_size_is_dropped_with_upstreams_error(caplog)
         rig.command([3.0, 4.0, 5.0])
     rig.update()
     assert [rig.cmd('v1'), rig.cmd('v2')] == [1.0, 2.0]
-    assert ('Dimension of command (3) does not match number of joints (2)! Not executing!'
-            in caplog.text)
+    assert (
+        'Dimension of command (3) does not match number of joints (2)! Not executing!'
+        in caplog.text
+    )
 
 
-@pytest.mark.parametrize('joints, message', [
-    (None, "Failed to getParam 'joints' (namespace: /iface/c)."),
-    ('p1', "Failed to getParam 'joints' (namespace: /iface/c)."),
-    ([], 'List of joint names is empty.'),
-])
+@pytest.mark.parametrize(
+    'joints, message',
+    [
+        (None, "Failed to getParam 'joints' (namespace: /iface/c)."),
+        ('p1', "Failed to getParam 'joints' (namespace: /iface/c)."),
+        ([], 'List of joint names is empty.'),
+    ],
+)
 def test_group_controller_joints_parameter_errors(joints, message):
     params = {} if joints is None else {'joints': joints}
     with pytest.raises(ControllerError) as exc:

@@ -1,6 +1,7 @@
 """DefaultRobotHWSim's position and velocity interfaces (sim/robot_hw_sim.py), as
 gazebo_ros_control's writeSim has them: with a fake robot for the exact writes, and
 with real pybullet for what the joints do."""
+
 import logging
 import math
 
@@ -28,21 +29,28 @@ def joint(name, kind, limit, axis='0 0 1', xyz='0 0 0.1'):
 
 # A horizontal arm on a vertical-axis position joint, one on a horizontal-axis position joint
 # (gravity pulls it), a wheel on a velocity joint and a continuous position joint.
-URDF = ('<robot name="iface"><link name="world"/>' + box_link('base', '0.2 0.2 0.05', 2.0)
-        + box_link('pos_link', '0.2 0.02 0.02', 0.2, xyz='0.1 0 0')
-        + box_link('grav_link', '0.2 0.02 0.02', 0.2, xyz='0.1 0 0')
-        + box_link('vel_link', '0.1 0.1 0.02', 0.3)
-        + box_link('turn_link', '0.1 0.02 0.02', 0.1)
-        + '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/>'
-          '<origin xyz="0 0 0.5"/></joint>'
-        + joint('pos', 'revolute', 'lower="-1" upper="1.5" effort="5" velocity="2"')
-        + joint('grav', 'revolute', 'lower="-2" upper="2" effort="10" velocity="3"', '0 1 0',
-                '0 0.3 0.1')
-        + joint('vel', 'continuous', 'effort="2" velocity="6"', xyz='0 -0.3 0.1')
-        + joint('turn', 'continuous', '', xyz='0.3 0 0.1')
-        + transmission('pos', POS) + transmission('grav', 'PositionJointInterface')
-        + transmission('vel', VEL) + transmission('turn', POS)
-        + control_plugin('/iface') + '</robot>')
+URDF = (
+    '<robot name="iface"><link name="world"/>'
+    + box_link('base', '0.2 0.2 0.05', 2.0)
+    + box_link('pos_link', '0.2 0.02 0.02', 0.2, xyz='0.1 0 0')
+    + box_link('grav_link', '0.2 0.02 0.02', 0.2, xyz='0.1 0 0')
+    + box_link('vel_link', '0.1 0.1 0.02', 0.3)
+    + box_link('turn_link', '0.1 0.02 0.02', 0.1)
+    + '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/>'
+    '<origin xyz="0 0 0.5"/></joint>'
+    + joint('pos', 'revolute', 'lower="-1" upper="1.5" effort="5" velocity="2"')
+    + joint(
+        'grav', 'revolute', 'lower="-2" upper="2" effort="10" velocity="3"', '0 1 0', '0 0.3 0.1'
+    )
+    + joint('vel', 'continuous', 'effort="2" velocity="6"', xyz='0 -0.3 0.1')
+    + joint('turn', 'continuous', '', xyz='0.3 0 0.1')
+    + transmission('pos', POS)
+    + transmission('grav', 'PositionJointInterface')
+    + transmission('vel', VEL)
+    + transmission('turn', POS)
+    + control_plugin('/iface')
+    + '</robot>'
+)
 NAMES = ['grav', 'pos', 'turn', 'vel']
 
 
@@ -63,7 +71,11 @@ def test_every_interface_gets_a_handle_named_by_its_transmission(fake):
     hw, _ = fake
     assert hw.joint_names() == NAMES
     assert {n: hw.handles[n].interface for n in NAMES} == {
-        'grav': POS, 'pos': POS, 'turn': POS, 'vel': VEL}
+        'grav': POS,
+        'pos': POS,
+        'turn': POS,
+        'vel': VEL,
+    }
 
 
 def test_set_joints_get_a_motor_capped_at_their_effort_limit_at_start(fake):
@@ -72,7 +84,11 @@ def test_set_joints_get_a_motor_capped_at_their_effort_limit_at_start(fake):
     indices, velocities, forces = robot.motors[-1]
     assert velocities == [0.0] * 4
     assert by_name(robot, indices, forces) == {
-        'grav': 10.0, 'pos': 5.0, 'turn': UNLIMITED_MOTOR_FORCE, 'vel': 2.0}
+        'grav': 10.0,
+        'pos': 5.0,
+        'turn': UNLIMITED_MOTOR_FORCE,
+        'vel': 2.0,
+    }
 
 
 def test_position_command_is_set_within_limits_and_one_velocity_step_from_the_last(fake):
@@ -133,7 +149,11 @@ def test_with_pid_gains_position_and_velocity_joints_are_driven_by_clamped_effor
     # their motors are switched off so that effort acts; the others keep theirs
     indices, _, forces = robot.motors[-1]
     assert by_name(robot, indices, forces) == {
-        'grav': 10.0, 'pos': 0.0, 'turn': UNLIMITED_MOTOR_FORCE, 'vel': 0.0}
+        'grav': 10.0,
+        'pos': 0.0,
+        'turn': UNLIMITED_MOTOR_FORCE,
+        'vel': 0.0,
+    }
     robot.set('pos', 0.2)
     robot.set('vel', 0.0, 1.0)
     hw.read()
@@ -165,8 +185,10 @@ def test_an_unsimulated_interface_leaves_the_joint_passive_with_upstreams_messag
     with caplog.at_level(logging.ERROR, logger='arm1.control'):
         hw = DefaultRobotHWSim(parse_urdf(xml), FakeRobot(list(parse_urdf(xml).joints)))
     assert 'vel' not in hw.handles
-    assert ("No matching hardware interface found for 'hardware_interface/PosVelJointInterface'"
-            " while loading interfaces for vel" in caplog.text)
+    assert (
+        "No matching hardware interface found for 'hardware_interface/PosVelJointInterface'"
+        " while loading interfaces for vel" in caplog.text
+    )
 
 
 # ----------------------------------------------------------------------------- real pybullet
@@ -179,8 +201,11 @@ def sim():
 
 def spawn(sim, params, gains=None):
     ros = FakeRos({'iface': params})
-    model = sim.spawn_urdf('iface', URDF, controller_manager_factory=lambda hw, ns: (
-        ControllerManager(hw, ros.node_handle, ns)))
+    model = sim.spawn_urdf(
+        'iface',
+        URDF,
+        controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+    )
     if gains:
         model.hw.set_pid_gains(gains)
     names = sorted(params)
@@ -232,8 +257,7 @@ def test_a_velocity_command_beyond_the_limit_turns_at_the_limit(sim):
 
 
 def test_hardware_pids_drive_position_and_velocity_joints_through_effort(sim):
-    model, ros = spawn(sim, CONTROLLERS, gains={
-        'pos': {'p': 20.0, 'd': 0.5}, 'vel': {'p': 0.5}})
+    model, ros = spawn(sim, CONTROLLERS, gains={'pos': {'p': 20.0, 'd': 0.5}, 'vel': {'p': 0.5}})
     ros.publish('/iface/pos_controller/command', 0.8)
     ros.publish('/iface/vel_controller/command', 2.0)
     run(sim, 2.0)
