@@ -191,6 +191,64 @@ def test_an_unsimulated_interface_leaves_the_joint_passive_with_upstreams_messag
     )
 
 
+def test_joint_limits_parameters_override_the_urdfs_per_kind(fake):
+    hw, robot = fake
+    hw.set_joint_limits(
+        {
+            # position: range narrowed, velocity limit raised, effort cap lowered
+            'pos': {
+                'has_position_limits': True,
+                'min_position': -0.5,
+                'max_position': 0.5,
+                'has_velocity_limits': True,
+                'max_velocity': 10.0,
+                'has_effort_limits': True,
+                'max_effort': 1.0,
+            },
+            # velocity: no velocity limit any more, and an acceleration limit
+            'vel': {
+                'has_velocity_limits': False,
+                'has_acceleration_limits': True,
+                'max_acceleration': 100.0,
+            },
+            # has_* true without its values: the URDF's stay
+            'grav': {'has_velocity_limits': True},
+        }
+    )
+    brakes = robot.motors[-1]
+    robot.set('pos', 0.0)
+    robot.set('grav', 0.0)
+    hw.read()
+    hw.handles['pos'].command = 0.3
+    hw.handles['grav'].command = 1.0
+    hw.handles['vel'].command = 50.0
+    hw.write()
+    placed = by_name(robot, *robot.placed[-1])
+    assert placed['pos'] == pytest.approx(10.0 * DT)  # the raised velocity limit
+    assert placed['grav'] == pytest.approx(3.0 * DT)  # the URDF's 3 rad/s
+    assert robot.motors[-1][1] == [pytest.approx(100.0 * DT)]  # one acceleration step
+    for _ in range(1000):
+        hw.handles['pos'].command = 0.9
+        hw.handles['vel'].command = 50.0
+        hw.write()
+    assert by_name(robot, *robot.placed[-1])['pos'] == pytest.approx(0.5)
+    assert robot.motors[-1][1] == [pytest.approx(50.0)]  # beyond the URDF's 6: none now
+    # the motor that holds the set joint between teleports is capped at the new effort limit
+    assert by_name(robot, brakes[0], brakes[2])['pos'] == 1.0
+
+
+def test_bad_joint_limits_parameters_name_the_joint_and_keep_the_urdfs(fake, caplog):
+    hw, robot = fake
+    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+        hw.set_joint_limits({'pos': {'has_velocity_limits': True, 'max_velocity': 'fast'}})
+    assert 'joint_limits/pos' in caplog.text
+    robot.set('pos', 0.0)
+    hw.read()
+    hw.handles['pos'].command = 1.0
+    hw.write()
+    assert by_name(robot, *robot.placed[-1])['pos'] == pytest.approx(2.0 * DT)
+
+
 # ----------------------------------------------------------------------------- real pybullet
 @pytest.fixture
 def sim():

@@ -92,8 +92,11 @@ class GazeboRosApi:
                     'controller manager namespace %s is not a legal ROS name'
                     % shown(model.namespace)
                 )
-            # The hardware's own PIDs for position/velocity joints, as DefaultRobotHWSim reads them.
+            # What DefaultRobotHWSim reads from the parameter server: joint limits over the
+            # URDF's, and the hardware's own PIDs for position/velocity joints.
             ns = model.namespace.rstrip('/')
+            limits = rospy.get_param(ns + '/joint_limits', {})
+            model.hw.set_joint_limits(limits if isinstance(limits, dict) else {})
             gains = rospy.get_param(ns + '/gazebo_ros_control/pid_gains', {})
             model.hw.set_pid_gains(gains if isinstance(gains, dict) else {})
             services = ControllerManagerServices(model.hw, model.namespace)

@@ -70,18 +70,31 @@ class SimulatedJoints(Protocol):
 class _Drive:
     """How one joint is written: its mode, limits and, for the PID modes, its PID."""
 
-    __slots__ = ('handle', 'index', 'bounds', 'pid', 'prev_cmd', 'wrapped')
+    __slots__ = (
+        'handle',
+        'index',
+        'bounds',
+        'max_acceleration',
+        'pid',
+        'prev_cmd',
+        'prev_vel',
+        'wrapped',
+    )
 
     def __init__(self, handle: JointHandle, index: int) -> None:
         self.handle, self.index = handle, index
-        self.bounds: SaturationBounds = saturation_bounds(handle.limits)
         self.pid: Optional[Pid] = None
         self.prev_cmd = math.nan  # position saturation: the last command written
-        lower, upper = self.bounds[1], self.bounds[2]
+        self.prev_vel = 0.0  # velocity saturation: the last command written
+        self.set_bounds(saturation_bounds(handle.limits), math.inf)
+
+    def set_bounds(self, bounds: SaturationBounds, max_acceleration: float) -> None:
+        self.bounds, self.max_acceleration = bounds, max_acceleration
+        lower, upper = bounds[1], bounds[2]
         # A revolute position error wraps only when its range spans a turn or more; within a
         # narrower range the plain difference is what the angles package gives.
-        self.wrapped = handle.type == 'continuous' or (
-            handle.type == 'revolute' and upper - lower >= 2 * math.pi
+        self.wrapped = self.handle.type == 'continuous' or (
+            self.handle.type == 'revolute' and upper - lower >= 2 * math.pi
         )
 
     def position_error(self, command: float) -> float:
@@ -107,11 +120,54 @@ class _Drive:
         self.prev_cmd = cmd
         return cmd
 
-    def saturate_velocity(self) -> float:
-        """VelocityJointSaturationHandle: +-max_velocity."""
+    def saturate_velocity(self, dt: float) -> float:
+        """VelocityJointSaturationHandle: +-max_velocity and, with an acceleration limit,
+        one max_acceleration step from the previous command (first: from 0)."""
         max_velocity = self.bounds[3]
+        low, high = -max_velocity, max_velocity
+        if self.max_acceleration < math.inf:
+            step = self.max_acceleration * dt
+            low, high = max(self.prev_vel - step, low), min(self.prev_vel + step, high)
         cmd = self.handle.command if math.isfinite(self.handle.command) else 0.0
-        return min(max(cmd, -max_velocity), max_velocity)
+        self.prev_vel = cmd = min(max(cmd, low), high)
+        return cmd
+
+
+def _override_limits(
+    bounds: SaturationBounds, params: Mapping[str, Any]
+) -> Tuple[SaturationBounds, float]:
+    """joint_limits_interface's getJointLimits from rosparam over the URDF's: each kind
+    (position, velocity, acceleration, effort) changes only when its ``has_*`` is given;
+    false removes it, true sets it when its values are given too."""
+    max_effort, lower, upper, max_velocity = bounds
+    max_acceleration = math.inf
+
+    def given(kind: str, *keys: str) -> Optional[List[float]]:
+        """None: unchanged; []: removed; else the values."""
+        if 'has_' + kind not in params:
+            return None
+        if not params['has_' + kind]:
+            return []
+        if not all(k in params for k in keys):
+            return None
+        values = [float(params[k]) for k in keys]
+        if not all(math.isfinite(v) for v in values):
+            raise ValueError('%s is not finite' % ', '.join(keys))
+        return values
+
+    pos = given('position_limits', 'min_position', 'max_position')
+    if pos is not None:
+        lower, upper = pos if pos else (-math.inf, math.inf)
+    vel = given('velocity_limits', 'max_velocity')
+    if vel is not None:
+        max_velocity = vel[0] if vel else math.inf
+    acc = given('acceleration_limits', 'max_acceleration')
+    if acc is not None:
+        max_acceleration = acc[0] if acc else math.inf
+    eff = given('effort_limits', 'max_effort')
+    if eff is not None:
+        max_effort = eff[0] if eff else math.inf
+    return (max_effort, lower, upper, max_velocity), max_acceleration
 
 
 class DefaultRobotHWSim:
@@ -145,6 +201,22 @@ class DefaultRobotHWSim:
         self._indices = robot.indices([h.name for h in self._ordered])
         self._drives = [_Drive(h, i) for h, i in zip(self._ordered, self._indices)]
         self.set_pid_gains(pid_gains or {})
+
+    def set_joint_limits(self, joint_limits: Mapping[str, Any]) -> None:
+        """``<robotNamespace>/joint_limits/<joint>`` parameters (has_position_limits,
+        min_position, max_position, has_velocity_limits, max_velocity, has_acceleration_limits,
+        max_acceleration, has_effort_limits, max_effort) over the URDF's limits, as
+        gazebo_ros_control applies them. Bad values name the joint; its URDF limits stay."""
+        for d in self._drives:
+            bounds, max_acceleration = saturation_bounds(d.handle.limits), math.inf
+            params = joint_limits.get(d.handle.name)
+            if isinstance(params, dict):
+                try:
+                    bounds, max_acceleration = _override_limits(bounds, params)
+                except (TypeError, ValueError) as exc:
+                    log.error("joint_limits/%s: %s; the URDF's limits apply", d.handle.name, exc)
+            d.set_bounds(bounds, max_acceleration)
+        self._plan()
 
     def set_pid_gains(self, pid_gains: Mapping[str, Any]) -> None:
         """Position and velocity joints with gains (a dict with ``p``) get a PID to effort;
@@ -229,7 +301,7 @@ class DefaultRobotHWSim:
                     h.command = cmd = d.saturate_position(dt)
                     error = d.position_error(cmd)
                 else:
-                    h.command = cmd = d.saturate_velocity()
+                    h.command = cmd = d.saturate_velocity(dt)
                     error = cmd - h.velocity
                 limit = d.bounds[0]
                 effort = min(max(d.pid.compute_command(error, dt), -limit), limit)
@@ -245,7 +317,7 @@ class DefaultRobotHWSim:
         if self._motored:
             velocities = []
             for d in self._motored:
-                d.handle.command = cmd = d.saturate_velocity()
+                d.handle.command = cmd = d.saturate_velocity(dt)
                 velocities.append(cmd)
             self.robot.set_velocity_motors(
                 [d.index for d in self._motored], velocities, self._motor_forces
