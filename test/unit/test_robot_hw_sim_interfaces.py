@@ -11,7 +11,7 @@ from conftest import WORLD_FILE, FakeRobot, FakeRos, box_link, control_plugin, t
 from arm1.control.controller_manager import ControllerManager
 from arm1.control.switching import switch_while_updating
 from arm1.description.sdf_world import read_world
-from arm1.description.urdf_model import parse_urdf
+from arm1.description.urdf_model import UrdfError, parse_urdf
 from arm1.sim.robot_hw_sim import UNLIMITED_MOTOR_FORCE, DefaultRobotHWSim
 from arm1.sim.simulation import Simulation
 
@@ -247,6 +247,102 @@ def test_bad_joint_limits_parameters_name_the_joint_and_keep_the_urdfs(fake, cap
     hw.handles['pos'].command = 1.0
     hw.write()
     assert by_name(robot, *robot.placed[-1])['pos'] == pytest.approx(2.0 * DT)
+
+
+# Soft limits: one joint per interface, each with a <safety_controller> inside [-1, 1].
+SAFETY = (
+    '<safety_controller soft_lower_limit="-0.5" soft_upper_limit="0.5" k_position="10"'
+    ' k_velocity="2"/>'
+)
+SOFT_URDF = (
+    '<robot name="soft"><link name="world"/>'
+    + box_link('base')
+    + ''.join(box_link(n + '_link') for n in ('se', 'sp', 'sv'))
+    + '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>'
+    + ''.join(
+        '<joint name="%s" type="revolute"><parent link="base"/><child link="%s_link"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="3" velocity="4"/>%s</joint>'
+        % (n, n, SAFETY)
+        for n in ('se', 'sp', 'sv')
+    )
+    + transmission('se')
+    + transmission('sp', POS)
+    + transmission('sv', VEL)
+    + control_plugin('/soft')
+    + '</robot>'
+)
+
+
+@pytest.fixture
+def soft():
+    model = parse_urdf(SOFT_URDF)
+    robot = FakeRobot(list(model.joints))
+    return DefaultRobotHWSim(model, robot, DT), robot
+
+
+def test_safety_controller_is_read_into_soft_limits():
+    limits = parse_urdf(SOFT_URDF).joints['sp'].limits
+    assert (limits.soft.lower, limits.soft.upper) == (-0.5, 0.5)
+    assert (limits.soft.k_position, limits.soft.k_velocity) == (10.0, 2.0)
+
+
+def test_soft_limits_bound_an_effort_joints_effort_by_velocity(soft):
+    hw, robot = soft
+    # inside the soft range at rest: velocity bounds -k_p * (pos - soft limit) = (-5, 5),
+    # within +-4: (-4, 4); effort bounds -k_v * (vel - bound) = (-8, 8) -> (-3, 3): it passes
+    robot.set('se', 0.0, 0.0)
+    hw.read()
+    hw.handles['se'].command = 2.5
+    hw.write()
+    assert by_name(robot, *robot.applied[-1])['se'] == 2.5
+    # beyond the soft upper limit (0.7): velocity bounds (-4, -2); moving up at 1 rad/s the
+    # effort may be at most -2 * (1 - (-2)) = -6 -> -3: pushed back whatever the command
+    robot.set('se', 0.7, 1.0)
+    hw.read()
+    hw.handles['se'].command = 2.5
+    hw.write()
+    assert by_name(robot, *robot.applied[-1])['se'] == -3.0
+    # moving down already at -2.5 rad/s: the upper bound -2 * (-2.5 + 2) = 1.0
+    robot.set('se', 0.7, -2.5)
+    hw.read()
+    hw.write()
+    assert by_name(robot, *robot.applied[-1])['se'] == pytest.approx(1.0)
+
+
+def test_soft_limits_slow_a_position_joint_near_its_soft_limit(soft):
+    hw, robot = soft
+    robot.set('sp', 0.45)
+    hw.read()
+    hw.handles['sp'].command = 1.0
+    hw.write()
+    # upper velocity bound -10 * (0.45 - 0.5) = 0.5 rad/s, not the URDF's 4
+    assert by_name(robot, *robot.placed[-1])['sp'] == pytest.approx(0.45 + 0.5 * DT)
+    for _ in range(5000):
+        hw.handles['sp'].command = 1.0  # a controller writes it every update
+        hw.write()
+    # it approaches the soft limit and never passes it
+    assert by_name(robot, *robot.placed[-1])['sp'] == pytest.approx(0.5, abs=1e-6)
+
+
+def test_soft_limits_bound_a_velocity_joints_velocity_by_position(soft):
+    hw, robot = soft
+    robot.set('sv', 0.4)
+    hw.read()
+    hw.handles['sv'].command = 3.0
+    hw.write()
+    assert robot.motors[-1][1] == [pytest.approx(-10.0 * (0.4 - 0.5))]  # 1.0
+    robot.set('sv', 0.6)
+    hw.read()
+    hw.write()
+    assert robot.motors[-1][1] == [pytest.approx(-1.0)]  # beyond: driven back
+    hw.handles['sv'].command = -3.0
+    hw.write()
+    assert robot.motors[-1][1] == [pytest.approx(-3.0)]  # towards the range: allowed
+
+
+def test_a_safety_controller_without_k_velocity_is_refused_naming_the_joint():
+    with pytest.raises(UrdfError, match="joint 'se' <safety_controller> has no k_velocity"):
+        parse_urdf(SOFT_URDF.replace(' k_velocity="2"', '', 1))
 
 
 # ----------------------------------------------------------------------------- real pybullet

@@ -18,13 +18,26 @@ def canonical_interface(name: Optional[str]) -> str:
 
 
 @dataclass
+class SoftLimits:
+    """A URDF ``<safety_controller>``: soft position limits and the gains that keep a joint
+    inside them (joint_limits_interface's SoftJointLimits)."""
+
+    lower: float = 0.0
+    upper: float = 0.0
+    k_position: float = 0.0
+    k_velocity: float = 0.0
+
+
+@dataclass
 class JointLimits:
-    """The URDF ``<limit>`` of a joint; a missing bound is None."""
+    """The URDF ``<limit>`` of a joint; a missing bound is None. ``soft``: its
+    ``<safety_controller>``, when it has one and a ``<limit>``."""
 
     lower: Optional[float] = None
     upper: Optional[float] = None
     effort: Optional[float] = None
     velocity: Optional[float] = None
+    soft: Optional[SoftLimits] = None
 
     @property
     def has_position_limits(self) -> bool:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Dict, Optional, Union
 
 from . import safe_xml
-from .joint_limits import JointLimits, canonical_interface
+from .joint_limits import JointLimits, SoftLimits, canonical_interface
 from .limits import LimitError, Limits
 from .mesh_limits import MESH_EXTENSIONS, MeshError, count_triangles, mesh_kind
 from .names import shown
@@ -172,6 +172,15 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
                 effort=_float(lim.get('effort', '0'), what),
                 velocity=_float(lim.get('velocity', '0'), what),
             )
+            safety = j.find('safety_controller')
+            if safety is not None:
+                what = "joint '%s' <safety_controller>" % name
+                if safety.get('k_velocity') is None:
+                    raise UrdfError('%s has no k_velocity' % what)
+                joint_limits.soft = SoftLimits(
+                    *(_float(safety.get(key, '0'), what)
+                      for key in ('soft_lower_limit', 'soft_upper_limit', 'k_position',
+                                  'k_velocity')))
         joints[name] = Joint(
             name, jtype or '', parent.get('link') or '', child.get('link') or '', joint_limits
         )

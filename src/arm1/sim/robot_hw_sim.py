@@ -75,6 +75,7 @@ class _Drive:
         'index',
         'bounds',
         'max_acceleration',
+        'has_range',
         'pid',
         'prev_cmd',
         'prev_vel',
@@ -91,6 +92,7 @@ class _Drive:
     def set_bounds(self, bounds: SaturationBounds, max_acceleration: float) -> None:
         self.bounds, self.max_acceleration = bounds, max_acceleration
         lower, upper = bounds[1], bounds[2]
+        self.has_range = math.isfinite(lower) and math.isfinite(upper)
         # A revolute position error wraps only when its range spans a turn or more; within a
         # narrower range the plain difference is what the angles package gives.
         self.wrapped = self.handle.type == 'continuous' or (
@@ -107,6 +109,31 @@ class _Drive:
             )[0]
         return command - h.position
 
+    def soft_velocity_bounds(self, position: float) -> Tuple[float, float]:
+        """The soft limits' velocity bounds at ``position``: -k_position times the distance
+        beyond each soft limit, within +-max_velocity (+-max_velocity without a range)."""
+        soft, max_velocity = self.handle.limits.soft, self.bounds[3]
+        assert soft is not None
+        if not self.has_range:
+            return -max_velocity, max_velocity
+        return (
+            _clamp(-soft.k_position * (position - soft.lower), -max_velocity, max_velocity),
+            _clamp(-soft.k_position * (position - soft.upper), -max_velocity, max_velocity),
+        )
+
+    def soft_effort(self) -> float:
+        """EffortJointSoftLimitsHandle: the effort that keeps the velocity within the soft
+        velocity bounds, within +-max_effort."""
+        h, soft, max_effort = self.handle, self.handle.limits.soft, self.bounds[0]
+        assert soft is not None
+        low, high = self.soft_velocity_bounds(h.position)
+        cmd = h.command if math.isfinite(h.command) else 0.0
+        return _clamp(
+            cmd,
+            _clamp(-soft.k_velocity * (h.velocity - low), -max_effort, max_effort),
+            _clamp(-soft.k_velocity * (h.velocity - high), -max_effort, max_effort),
+        )
+
     def saturate_position(self, dt: float) -> float:
         """joint_limits_interface's PositionJointSaturationHandle: within the range and one
         max_velocity step of the previous command (first: of the measured position)."""
@@ -115,8 +142,14 @@ class _Drive:
         if math.isnan(self.prev_cmd):
             self.prev_cmd = h.position
         cmd = h.command if math.isfinite(h.command) else self.prev_cmd
-        step = max_velocity * dt
-        cmd = min(max(cmd, max(self.prev_cmd - step, lower)), min(self.prev_cmd + step, upper))
+        if h.limits.soft is not None:
+            # PositionJointSoftLimitsHandle: steps bounded by the soft velocity bounds
+            low, high = self.soft_velocity_bounds(self.prev_cmd)
+            low, high = self.prev_cmd + low * dt, self.prev_cmd + high * dt
+        else:
+            step = max_velocity * dt
+            low, high = self.prev_cmd - step, self.prev_cmd + step
+        cmd = _clamp(cmd, max(low, lower), min(high, upper))
         self.prev_cmd = cmd
         return cmd
 
@@ -125,12 +158,24 @@ class _Drive:
         one max_acceleration step from the previous command (first: from 0)."""
         max_velocity = self.bounds[3]
         low, high = -max_velocity, max_velocity
-        if self.max_acceleration < math.inf:
+        if self.handle.limits.soft is not None:
+            # VelocityJointSoftLimitsHandle: the soft bounds, and acceleration from the
+            # measured velocity rather than the last command
+            low, high = self.soft_velocity_bounds(self.handle.position)
+            if self.max_acceleration < math.inf:
+                step, vel = self.max_acceleration * dt, self.handle.velocity
+                low, high = max(vel - step, low), min(vel + step, high)
+        elif self.max_acceleration < math.inf:
             step = self.max_acceleration * dt
             low, high = max(self.prev_vel - step, low), min(self.prev_vel + step, high)
         cmd = self.handle.command if math.isfinite(self.handle.command) else 0.0
         self.prev_vel = cmd = min(max(cmd, low), high)
         return cmd
+
+
+def _clamp(value: float, low: float, high: float) -> float:
+    """joint_limits_interface's clamp: min(max(value, low), high)."""
+    return min(max(value, low), high)
 
 
 def _override_limits(
@@ -294,7 +339,10 @@ class DefaultRobotHWSim:
         for d in self._torque:
             h = d.handle
             if h.interface == EFFORT_JOINT_INTERFACE:
-                effort = saturate_effort(h.command, h.position, h.velocity, *d.bounds)
+                if h.limits.soft is not None:
+                    effort = d.soft_effort()
+                else:
+                    effort = saturate_effort(h.command, h.position, h.velocity, *d.bounds)
             else:
                 assert d.pid is not None
                 if h.interface == POSITION_JOINT_INTERFACE:
