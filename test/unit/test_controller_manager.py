@@ -58,7 +58,9 @@ def test_controller_types():
         JSC,
         'position_controllers/JointGroupPositionController',
         'position_controllers/JointPositionController',
+        'position_controllers/JointTrajectoryController',
         'velocity_controllers/JointGroupVelocityController',
+        'velocity_controllers/JointTrajectoryController',
         'velocity_controllers/JointVelocityController',
     ]
 

@@ -7,7 +7,12 @@ import pytest
 from conftest import FakeRos
 
 from arm1.control.controller import ControllerError
-from arm1.control.hardware_interface import JointHandle
+from arm1.control.hardware_interface import (
+    EFFORT_JOINT_INTERFACE,
+    POSITION_JOINT_INTERFACE,
+    VELOCITY_JOINT_INTERFACE,
+    JointHandle,
+)
 from arm1.control.joint_trajectory_controller import (
     GOAL_TOLERANCE_VIOLATED,
     INVALID_GOAL,
@@ -15,6 +20,8 @@ from arm1.control.joint_trajectory_controller import (
     PATH_TOLERANCE_VIOLATED,
     SUCCESSFUL,
     JointTrajectoryController,
+    PositionJointTrajectoryController,
+    VelocityJointTrajectoryController,
 )
 from arm1.control.registry import CONTROLLER_TYPES
 from arm1.control.trajectory import Segment, State, hold_segment, sample
@@ -26,15 +33,15 @@ JTC = 'effort_controllers/JointTrajectoryController'
 
 
 class FakeHW:
-    def __init__(self, joints):
-        self.handles = {n: JointHandle(n, t) for n, t in joints.items()}
+    def __init__(self, joints, interface=EFFORT_JOINT_INTERFACE):
+        self.handles = {n: JointHandle(n, t, interface=interface) for n, t in joints.items()}
 
     def joint_names(self):
         return sorted(self.handles)
 
     def get_handle(self, name, interface, controller_ns):
-        if name not in self.handles:
-            raise ControllerError('no joint %s for %s' % (name, controller_ns))
+        if name not in self.handles or self.handles[name].interface != interface:
+            raise ControllerError('no joint %s with %s for %s' % (name, interface, controller_ns))
         return self.handles[name]
 
 
@@ -373,3 +380,50 @@ def test_state_published_at_the_state_rate(rig):
     msgs = rig.ros.messages(NS + '/jtc/state')
     assert 45 <= len(msgs) <= 51
     assert set(msgs[-1]) >= {'desired', 'actual', 'error', 'joint_names', 'stamp'}
+
+
+# --------------------------------------------------------------------------- variants
+def load(cls, interface, **extra):
+    hw = FakeHW({'j1': 'revolute', 'j2': 'continuous'}, interface)
+    ros = FakeRos({'arm': {'jtc': params(**extra)}})
+    c = cls()
+    c.init_request(hw, ros.node_handle(NS), ros.node_handle(NS + '/jtc'))
+    return c, hw, ros
+
+
+def test_variants_registered_under_upstreams_type_names():
+    assert CONTROLLER_TYPES['position_controllers/JointTrajectoryController'] \
+        is PositionJointTrajectoryController
+    assert CONTROLLER_TYPES['velocity_controllers/JointTrajectoryController'] \
+        is VelocityJointTrajectoryController
+
+
+def test_effort_variant_refuses_position_joints():
+    with pytest.raises(ControllerError, match='EffortJointInterface'):
+        load(JointTrajectoryController, POSITION_JOINT_INTERFACE)
+
+
+def test_position_variant_commands_the_desired_position_without_gains():
+    c, hw, ros = load(PositionJointTrajectoryController, POSITION_JOINT_INTERFACE, gains={})
+    hw.handles['j1'].position = 0.3
+    c.start_request(0)
+    assert hw.handles['j1'].command == 0.3  # holds where it is
+    gh = ros.action_servers[NS + '/jtc/follow_joint_trajectory'].send_goal(dict(trajectory=dict(
+        stamp=0, joint_names=['j1', 'j2'], points=[dict(positions=[1.3, 0.0], time_from_start=S)])))
+    assert gh.status == 'ACTIVE'
+    for k in range(1, 501):
+        c.update(k * DT_NS, DT_NS)
+    assert hw.handles['j1'].command == pytest.approx(0.8, abs=2e-3)
+
+
+def test_velocity_variant_commands_ff_plus_pid():
+    c, hw, ros = load(VelocityJointTrajectoryController, VELOCITY_JOINT_INTERFACE,
+                      velocity_ff={'j1': 1.0})
+    c.start_request(0)
+    ros.publish(NS + '/jtc/command', dict(stamp=0, joint_names=['j1', 'j2'], points=[
+        dict(positions=[1.0, 0.0], time_from_start=S)]))
+    c.update(DT_NS, DT_NS)
+    _, (p, v, _) = sample(c.trajectory[0], c.uptime)
+    assert hw.handles['j1'].command == pytest.approx(1.0 * v + 100.0 * p + 10.0 * v)
+    c.stop_request(DT_NS)
+    assert hw.handles['j1'].command == 0.0

@@ -11,11 +11,15 @@ from __future__ import annotations
 import logging
 import math
 import threading
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, ClassVar, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from .angles import shortest_angular_distance
 from .controller import Controller, ControllerError, require_param
-from .hardware_interface import EFFORT_JOINT_INTERFACE
+from .hardware_interface import (
+    EFFORT_JOINT_INTERFACE,
+    POSITION_JOINT_INTERFACE,
+    VELOCITY_JOINT_INTERFACE,
+)
 from .interfaces import Fields, GoalHandle, NodeHandle, Publisher, RobotHW
 from .pid import Pid, PidConfigError
 from .trajectory import (
@@ -63,6 +67,9 @@ def _float(value: Any, what: str, ns: str) -> float:
 class JointTrajectoryController(Controller):
     type_name = 'effort_controllers/JointTrajectoryController'
     interface = EFFORT_JOINT_INTERFACE
+    # The hardware_interface_adapter: velocity and effort joints get velocity_ff * v + PID
+    # per joint (gains required); position joints the desired position (gains ignored).
+    commands_position: ClassVar[bool] = False
 
     _state_pub: Publisher
 
@@ -106,7 +113,9 @@ class JointTrajectoryController(Controller):
         if not isinstance(gains, dict) or not isinstance(ff, dict):
             raise ControllerError("%s: 'gains' and 'velocity_ff' must be maps by joint" % ns)
         try:
-            self.pids = [Pid.from_params(gains.get(j), '%s/gains/%s' % (ns, j)) for j in joints]
+            self.pids = [Pid() if self.commands_position
+                         else Pid.from_params(gains.get(j), '%s/gains/%s' % (ns, j))
+                         for j in joints]
         except PidConfigError as exc:  # upstream loads half-built and crashes later
             raise ControllerError(str(exc))
         self.velocity_ff = [_float(ff.get(j, 0.0), 'velocity_ff/' + j, ns) for j in joints]
@@ -152,15 +161,16 @@ class JointTrajectoryController(Controller):
             self._done = [False] * len(self.joints)
             for pid, j in zip(self.pids, self.joints):
                 pid.reset()
-                j.command = 0.0
+                j.command = j.position if self.commands_position else 0.0
 
     def stopping(self, time_ns: int) -> None:
         with self._lock:
             active, self._active = self._active, None
         if active is not None:
             active.cancel(dict(error_code=SUCCESSFUL, error_string=''))
-        for j in self.joints:
-            j.command = 0.0
+        if not self.commands_position:  # no effort or velocity left behind
+            for j in self.joints:
+                j.command = 0.0
 
     def _hold(self, i: int, goal: Optional[GoalHandle] = None,
               tolerances: Optional[Tolerances] = None) -> Segment:
@@ -365,8 +375,11 @@ class JointTrajectoryController(Controller):
                 e_vel = v - joint.velocity
                 desired.append((p, v, a))
                 errors.append((e_pos, e_vel))
-                joint.command = (self.velocity_ff[i] * v
-                                 + self.pids[i].compute_command_with_rate(e_pos, e_vel, dt))
+                if self.commands_position:
+                    joint.command = p
+                else:
+                    joint.command = (self.velocity_ff[i] * v
+                                     + self.pids[i].compute_command_with_rate(e_pos, e_vel, dt))
                 active = self._active
                 if active is None or seg.goal is None or seg.goal.id != active.id:
                     continue
@@ -456,3 +469,14 @@ def _state(point: Mapping[str, Any], j: int) -> State:
                  float(vel[j]) if vel else None,
                  float(acc[j]) if acc and vel else None)
 
+
+
+class PositionJointTrajectoryController(JointTrajectoryController):
+    type_name = 'position_controllers/JointTrajectoryController'
+    interface = POSITION_JOINT_INTERFACE
+    commands_position = True
+
+
+class VelocityJointTrajectoryController(JointTrajectoryController):
+    type_name = 'velocity_controllers/JointTrajectoryController'
+    interface = VELOCITY_JOINT_INTERFACE

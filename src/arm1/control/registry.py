@@ -12,13 +12,19 @@ from .controller import Controller
 from .forward_command_controller import FORWARD_CONTROLLERS
 from .joint_position_controller import JointPositionController
 from .joint_state_controller import JointStateController
-from .joint_trajectory_controller import JointTrajectoryController
+from .joint_trajectory_controller import (
+    JointTrajectoryController,
+    PositionJointTrajectoryController,
+    VelocityJointTrajectoryController,
+)
 from .joint_velocity_controller import JointVelocityController
 
 CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = (
     JointPositionController,
     JointStateController,
     JointTrajectoryController,
+    PositionJointTrajectoryController,
+    VelocityJointTrajectoryController,
     JointVelocityController,
     *FORWARD_CONTROLLERS,
 )

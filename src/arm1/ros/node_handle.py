@@ -174,8 +174,18 @@ class _ActionServer:
         if timer is not None:
             period = timer._period
             timer.shutdown()
-            self.server.status_timer = rospy.Timer(period, self.server.publish_status_async,
-                                                   reset=True)
+            self._last_now = rospy.Time.now()
+            self.server.status_timer = rospy.Timer(period, self._publish_status, reset=True)
+
+    def _publish_status(self, event: Any) -> None:
+        # After reset_simulation a cancel stamped before it would silently cancel every new
+        # goal (actionlib cancels goals stamped at or before the newest cancel): forget it.
+        now = rospy.Time.now()
+        if now < self._last_now:
+            with self.server.lock:
+                self.server.last_cancel = rospy.Time()
+        self._last_now = now
+        self.server.publish_status_async(event)
 
     def unregister(self) -> None:
         s = self.server
