@@ -7,6 +7,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 import actionlib
 import rospy
@@ -20,7 +21,7 @@ from control_msgs.msg import (
 )
 from control_msgs.srv import QueryTrajectoryState
 from std_srvs.srv import Empty
-from trajectory_msgs.msg import JointTrajectoryPoint
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import JOINTS, Recorder, WorldTestCase, positions, sim_wait, wait_for  # noqa: E402
@@ -127,7 +128,33 @@ class Trajectory(WorldTestCase):
         self.assertEqual(state, GoalStatus.SUCCEEDED, result)
         self.assertLess(abs(self.now()['joint1'] - 0.3), GOAL_TOL)
 
-    def test_07_trajectory_demo_prints_a_successful_result(self):
+    def test_07_paused_goal_waits_then_runs_on_unpause(self):
+        self.run_goal(make_goal([(1.0, [0.0, 1.0, 0.0, 0.0])]))
+        call = rospy.ServiceProxy
+        call('/gazebo/pause_physics', Empty)()
+        try:
+            self.client.send_goal(make_goal([(1.5, [0.4, 1.0, 0.0, 0.0])]))
+            self.assertTrue(wait_for(lambda: self.client.get_state() == GoalStatus.ACTIVE, 10),
+                            'goal not accepted while paused')
+            time.sleep(1.0)  # wall time: sim time stands still
+            self.assertEqual(self.client.get_state(), GoalStatus.ACTIVE)
+            self.assertLess(abs(self.now()['joint1']), 0.05, 'the arm moved while paused')
+        finally:
+            call('/gazebo/unpause_physics', Empty)()
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(30)))
+        self.assertEqual(self.client.get_state(), GoalStatus.SUCCEEDED)
+        self.assertLess(abs(self.now()['joint1'] - 0.4), GOAL_TOL)
+
+    def test_08_command_topic_moves_the_arm(self):
+        pub = rospy.Publisher('/arm1/arm_controller/command', JointTrajectory, queue_size=1,
+                              latch=True)
+        msg = make_goal([(1.5, [-0.3, 0.9, 0.2, 0.1])]).trajectory
+        pub.publish(msg)
+        self.assertTrue(wait_for(lambda: abs(self.now()['joint1'] + 0.3) < GOAL_TOL, 30),
+                        'joint1 at %.3f, not -0.3' % self.now()['joint1'])
+        pub.unregister()
+
+    def test_09_trajectory_demo_prints_a_successful_result(self):
         out = subprocess.run(['rosrun', 'arm1', 'trajectory_demo'], timeout=120,
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         self.assertEqual(out.returncode, 0, out.stdout)
