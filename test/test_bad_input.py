@@ -54,7 +54,7 @@ class BadInput(WorldTestCase):
         for name, words in (
             ('unknown_joint_controller', ['joint9']),
             ('no_p_controller', ['No p gain specified']),
-            ('unknown_type_controller', ['JointTrajectoryController', 'does not exist']),
+            ('unknown_type_controller', ['DiffDriveController', 'does not exist']),
             ('no_type_controller', ['type was not specified']),
         ):
             mark = time.monotonic()

@@ -72,12 +72,15 @@ class Interfaces(WorldTestCase):
             for c in self.list_controllers().controller
         }
         self.assertEqual(claimed['pos_controller'][0], 'running')
-        self.assertIn('PositionJointInterface', claimed['pos_controller'][1][0][0])
+        # As upstream: the C++ type name, and the joints sorted (a std::set).
+        self.assertEqual(
+            claimed['pos_controller'][1][0][0], 'hardware_interface::PositionJointInterface'
+        )
         self.assertIn('VelocityJointInterface', claimed['vel_controller'][1][0][0])
         self.assertEqual(claimed['group_controller'][0], 'initialized')  # loaded --stopped
         [(interface, resources)] = claimed['group_controller'][1]
         self.assertIn('PositionJointInterface', interface)
-        self.assertEqual(sorted(resources), ['pid_joint', 'pos_joint'])
+        self.assertEqual(resources, ['pid_joint', 'pos_joint'])
         self.assertEqual(sorted(self.states.last().name), ['pid_joint', 'pos_joint', 'vel_joint'])
 
     def test_2_position_joints_reach_their_commands(self):

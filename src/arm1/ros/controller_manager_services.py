@@ -16,6 +16,13 @@ from ..control.controller_manager import BASE_CLASS, ControllerManager, Controll
 from .node_handle import RosNodeHandle
 
 
+def cpp_type_name(interface: str) -> str:
+    """``hardware_interface::EffortJointInterface``: list_controllers names the C++ type, as
+    upstream does (MoveIt's ros_control plugin matches on it); the resources come sorted
+    (a std::set upstream)."""
+    return interface.replace('/', '::')
+
+
 class ControllerManagerServices:
     def __init__(self, robot_hw, namespace):
         self.manager = ControllerManager(robot_hw, RosNodeHandle, namespace)
@@ -39,7 +46,10 @@ class ControllerManagerServices:
                     name=n,
                     type=t,
                     state=s,
-                    claimed_resources=[HardwareInterfaceResources(i, joints) for i, joints in res],
+                    claimed_resources=[
+                        HardwareInterfaceResources(cpp_type_name(i), sorted(joints))
+                        for i, joints in res
+                    ],
                 )
                 for n, t, s, res in self.manager.list_controllers()
             ]
