@@ -427,3 +427,16 @@ def test_velocity_variant_commands_ff_plus_pid():
     assert hw.handles['j1'].command == pytest.approx(1.0 * v + 100.0 * p + 10.0 * v)
     c.stop_request(DT_NS)
     assert hw.handles['j1'].command == 0.0
+
+
+def test_restart_holds_the_new_measured_position_also_with_a_stop_duration():
+    r = Rig(stop_trajectory_duration=0.2)
+    r.start()
+    r.goal([(0.5, (0.5, 0.0))])
+    r.step(700)
+    r.c.stop_request(r.t)
+    r.joint('j1').position, r.joint('j1').velocity = -0.2, 0.0
+    r.start()
+    r.follow = False
+    r.step(300)
+    assert r.desired(0) == pytest.approx((-0.2, 0.0, 0.0))

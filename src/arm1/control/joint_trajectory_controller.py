@@ -157,6 +157,7 @@ class JointTrajectoryController(Controller):
         with self._lock:
             self._time_ns, self._period_ns, self.uptime = time_ns, 0, 0.0
             self._last_state_pub = self._last_feedback = 0.0
+            self.trajectory = []  # desired = measured on start, not a previous run's
             self.trajectory = [[self._hold(i)] for i in range(len(self.joints))]
             self._done = [False] * len(self.joints)
             for pid, j in zip(self.pids, self.joints):
@@ -178,7 +179,7 @@ class JointTrajectoryController(Controller):
         if self.stop_trajectory_duration > 0 and self.trajectory:
             _, (p, v, _) = sample(self.trajectory[i], self.uptime)
         else:
-            p, v = self.joints[i].position, 0.0
+            p, v = self.joints[i].position, self.joints[i].velocity
         seg = hold_segment(self.uptime, p, v, self.stop_trajectory_duration)
         seg.goal, seg.tolerances = goal, tolerances or self.default_tolerances[i]
         return seg
