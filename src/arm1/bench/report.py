@@ -62,7 +62,7 @@ ROWS = [
     ('stand-in top speed, 4 arms (steps/s)', 'standin_4', 'steps_per_s', '', None, '%.0f'),
     ('stand-in top speed, 8 arms (steps/s)', 'standin_8', 'steps_per_s', '', None, '%.0f'),
     (
-        'stand-in top speed, 1 arm, camera streaming 30 Hz (steps/s)',
+        'stand-in top speed, 1 arm, camera streaming 30 Hz in lockstep (steps/s)',
         'standin_camera',
         'steps_per_s',
         '',
@@ -220,7 +220,7 @@ METHOD = '''
 - **bare pybullet loop**: arm1 (same URDF and meshes) in pybullet DIRECT, a ground plane; each
   step reads the four joints, computes a PD in plain Python, applies the torques and steps.
   No ROS, none of our classes: the ceiling for anything built on pybullet in Python.
-- **stand-in top speed**: the world node's own code (`start_world`, `GazeboRosApi.run`) with
+- **stand-in top speed**: the world node's own code (`start_world`, `WorldNode.run`) with
   `real_time_update_rate` 0, all five controllers running, `/clock` at 100 Hz sim time and
   joint_states at 50 Hz sim time with a subscriber in another process (`rostopic hz`, as
   robot_state_publisher would be). N arms: N copies of arm1, each in its own namespace

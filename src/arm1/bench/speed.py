@@ -17,7 +17,8 @@ def standin(
     physics thread's time goes instead; with ``camera``: arm1's camera streaming)."""
     import rospy
 
-    node, pacer = start_standin(arms, 0)
+    # With the camera: in lockstep, so that the figure says what a frame costs the physics.
+    node, pacer = start_standin(arms, 0, lockstep=camera)
     procs = listeners(arms, camera)
     marks: List[Tuple[float, int]] = []
 

@@ -16,15 +16,18 @@ if TYPE_CHECKING:
     from ..sim.pacer import Pacer
 
 
-def start_standin(arms: int, real_time_update_rate: Optional[float]) -> Tuple[WorldNode, Pacer]:
+def start_standin(
+    arms: int, real_time_update_rate: Optional[float], lockstep: bool = False
+) -> Tuple[WorldNode, Pacer]:
     """``(world node, pacer)``: the world file with ``arms`` arm1s, each in /armK, all five
-    controllers asked to start (they do at the first update of ``node.run``)."""
+    controllers asked to start (they do at the first update of ``node.run``); ``lockstep``:
+    physics waits for every camera frame (gzserver --lockstep)."""
     import rosparam
     import rospy
 
     from ..ros.world_node import parse_args, start_world
 
-    argv = [WORLD]
+    argv = [WORLD] + (['--lockstep'] if lockstep else [])
     if real_time_update_rate is not None:
         argv += ['--real-time-update-rate', str(real_time_update_rate)]
     rosparam.set_param('/use_sim_time', 'true')  # as gazebo.launch sets it
