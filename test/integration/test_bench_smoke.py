@@ -46,6 +46,10 @@ def test_figures_are_sane(quick_bench):
     _, r, _ = quick_bench
     assert median(r, 'bare', 'steps_per_s') > 5000
     assert r['figures']['speed_ratio']['median'] > 0.2  # the stand-in is not far off bare pybullet
+    # the trajectory-controlled arm runs, at a speed of the same order as the position one
+    assert median(r, 'standin_trajectory', 'steps_per_s') > 0.3 * median(
+        r, 'standin_1', 'steps_per_s'
+    )
     assert 0.9 < median(r, 'realtime', 'rtf') < 1.1
     assert abs(median(r, 'realtime', 'joint_states_hz') - 50.0) < 1.0
     assert 0 < median(r, 'realtime', 'cpu_core_fraction') < 0.8

@@ -11,14 +11,19 @@ from .step_profile import profile_split
 
 
 def standin(
-    seconds: float, arms: int = 1, warmup: float = 1.0, profile: bool = False, camera: bool = False
+    seconds: float,
+    arms: int = 1,
+    warmup: float = 1.0,
+    profile: bool = False,
+    camera: bool = False,
+    trajectory: bool = False,
 ) -> Dict[str, Any]:
     """Steps per wall second over ``seconds`` after ``warmup`` (with ``profile``: where the
     physics thread's time goes instead; with ``camera``: arm1's camera streaming)."""
     import rospy
 
     # With the camera: in lockstep, so that the figure says what a frame costs the physics.
-    node, pacer = start_standin(arms, 0, lockstep=camera)
+    node, pacer = start_standin(arms, 0, lockstep=camera, trajectory=trajectory)
     procs = listeners(arms, camera)
     marks: List[Tuple[float, int]] = []
 

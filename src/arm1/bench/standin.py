@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, List, Optional, Tuple
 import yaml
 
 from ..control.switching import SwitchRequest
-from .arm import CONTROLLERS, NAMES, WORLD, arm1_urdf
+from .arm import CONTROLLERS, NAMES, TRAJECTORY_CONTROLLERS, TRAJECTORY_NAMES, WORLD, arm1_urdf
 
 if TYPE_CHECKING:
     from ..ros.world_node import WorldNode
@@ -17,11 +17,15 @@ if TYPE_CHECKING:
 
 
 def start_standin(
-    arms: int, real_time_update_rate: Optional[float], lockstep: bool = False
+    arms: int,
+    real_time_update_rate: Optional[float],
+    lockstep: bool = False,
+    trajectory: bool = False,
 ) -> Tuple[WorldNode, Pacer]:
     """``(world node, pacer)``: the world file with ``arms`` arm1s, each in /armK, all five
     controllers asked to start (they do at the first update of ``node.run``); ``lockstep``:
-    physics waits for every camera frame (gzserver --lockstep)."""
+    physics waits for every camera frame (gzserver --lockstep); ``trajectory``: each arm
+    driven by one JointTrajectoryController (config/controllers_trajectory.yaml) instead."""
     import rosparam
     import rospy
 
@@ -32,7 +36,8 @@ def start_standin(
         argv += ['--real-time-update-rate', str(real_time_update_rate)]
     rosparam.set_param('/use_sim_time', 'true')  # as gazebo.launch sets it
     node, pacer = start_world(parse_args(argv))
-    with open(CONTROLLERS) as f:
+    names = TRAJECTORY_NAMES if trajectory else NAMES
+    with open(TRAJECTORY_CONTROLLERS if trajectory else CONTROLLERS) as f:
         params = yaml.safe_load(f)['arm1']
     managers = []
     for k in range(1, arms + 1):
@@ -42,12 +47,12 @@ def start_standin(
         manager = model.controller_manager
         if manager is None:
             raise RuntimeError('arm1 came without its controller manager (gazebo_ros_control)')
-        for name in NAMES:
+        for name in names:
             manager.load_controller(name)
         managers.append(manager)
     # A switch waits for the next update: ask from threads, the world loop does it.
     for manager in managers:
-        SwitchRequest(manager, NAMES)
+        SwitchRequest(manager, names)
     return node, pacer
 
 

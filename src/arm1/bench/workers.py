@@ -38,6 +38,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser.add_argument('--rate', type=float)
     parser.add_argument('--profile', action='store_true', default=None)
     parser.add_argument('--camera', action='store_true', default=None)
+    parser.add_argument('--trajectory', action='store_true', default=None)
     args = parser.parse_args(argv)
     kwargs = {k: v for k, v in vars(args).items() if k != 'kind' and v is not None}
     result = KINDS[args.kind](**kwargs)
