@@ -8,10 +8,14 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
-from typing import Dict
+from typing import Callable, Dict, Optional
 
 from . import safe_xml
 from .limits import LimitError, Limits
+from .resource_paths import ResourceNotFound
+
+# model://NAME -> the SDF file (ResourcePaths.find_model); raises ResourceNotFound.
+FindModel = Callable[[str], str]
 
 SHAPES = ('plane', 'box', 'sphere', 'cylinder')
 # <plugin name="arm1_limits" filename="libarm1_limits.so"><camera_pixels>...</...></plugin>
@@ -121,7 +125,7 @@ def _limits(world: ET.Element, source: str) -> Limits:
         raise SdfError(str(exc)) from None
 
 
-def parse_world(xml_text, source='world'):
+def parse_world(xml_text, source='world', find_model: Optional[FindModel] = None):
     # The world file is the user's own, so no size limits; but no DTD either (no entities).
     try:
         root = safe_xml.parse(xml_text, source)
@@ -149,16 +153,55 @@ def parse_world(xml_text, source='world'):
         else:
             config.skipped.append((model.get('name', '?'), why))
     for include in world.findall('include'):
-        uri = (include.findtext('uri') or '').strip()
-        name = (include.findtext('name') or uri).strip()
-        config.skipped.append((name, 'included from %s, which this stand-in cannot fetch' % uri))
+        _include(include, config, find_model)
     return config
 
 
-def read_world(path):
+def _include(include: ET.Element, config: WorldConfig, find_model: Optional[FindModel]) -> None:
+    """Build an <include>d model as Gazebo would: its <name>, <pose>, <static> win."""
+    uri = (include.findtext('uri') or '').strip()
+    name = (include.findtext('name') or uri).strip()
+    if find_model is None:
+        config.skipped.append((name, 'included from %s, which this stand-in cannot fetch' % uri))
+        return
+    try:
+        path = find_model(uri)
+        with open(path) as f:
+            root = safe_xml.parse(f.read(), path)
+    except ResourceNotFound as exc:
+        config.skipped.append((name, str(exc)))
+        return
+    except OSError as exc:
+        config.skipped.append((name, 'cannot read %s: %s' % (uri, exc.strerror)))
+        return
+    except safe_xml.XmlRefused as exc:
+        config.skipped.append((name, str(exc)))
+        return
+    model = root.find('model') if root.tag == 'sdf' else None
+    if model is None:
+        return  # a light (model://sun) or other non-model: nothing physical to build
+    for tag in ('name', 'pose', 'static'):
+        text = include.findtext(tag)
+        if text is None:
+            continue
+        if tag == 'name':
+            model.set('name', text.strip())
+            continue
+        element = model.find(tag)
+        if element is None:
+            element = ET.SubElement(model, tag)
+        element.text = text
+    built, why = _model(model)
+    if built:
+        config.models.append(built)
+    else:
+        config.skipped.append((model.get('name', name), why))
+
+
+def read_world(path, find_model: Optional[FindModel] = None):
     try:
         with open(path) as f:
             text = f.read()
     except OSError as exc:
         raise SdfError('cannot read world file %s: %s' % (path, exc.strerror))
-    return parse_world(text, path)
+    return parse_world(text, path, find_model)

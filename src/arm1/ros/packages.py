@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import functools
 import os
+from typing import List
 
 import rospkg
 
+from ..description.resource_paths import PackageExports
 from ..paths import repo_root
 
 
@@ -24,3 +26,22 @@ def find_package(name: str) -> str:
         if name == 'arm1' and os.path.isfile(os.path.join(repo_root(), 'package.xml')):
             return repo_root()
         raise LookupError(name) from None
+
+
+def gazebo_exports() -> List[PackageExports]:
+    """Every package's ``<export><gazebo_ros gazebo_model_path=... gazebo_media_path=.../>``,
+    the paths gazebo_ros adds to Gazebo's (``${prefix}`` = the package's folder)."""
+    rospack = _rospack()
+    found = []
+    for name in sorted(rospack.list()):
+        try:
+            manifest = rospack.get_manifest(name)
+            exports = PackageExports(
+                manifest.get_export('gazebo_ros', 'gazebo_model_path'),
+                manifest.get_export('gazebo_ros', 'gazebo_media_path'),
+            )
+        except (rospkg.ResourceNotFound, rospkg.InvalidManifest, ValueError):
+            continue  # a broken manifest of some other package must not stop the world
+        if exports.model_paths or exports.media_paths:
+            found.append(exports)
+    return found

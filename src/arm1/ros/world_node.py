@@ -7,18 +7,21 @@ and are handed to it between two steps (SimThreadCalls), so pybullet is only tou
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from typing import List, Optional, Sequence, Tuple
 
 import rospy
 
 from ..description.limits import LimitError, Limits
+from ..description.resource_paths import ResourceNotFound, gazebo_paths
 from ..description.sdf_world import SdfError, WorldConfig, read_world
 from ..sim.pacer import Pacer, wall_period
 from ..sim.simulation import Model, Simulation
 from .gazebo_ros_api import GazeboRosApi
 from .master_watch import MasterWatch
 from .node_handle import route_core_logs
+from .packages import gazebo_exports
 from .sim_clock import SimClock
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop
@@ -73,7 +76,11 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
 
 def world_config(args: argparse.Namespace) -> WorldConfig:
     """The world file, with the command line's and the ``~limits`` parameters' overrides."""
-    config = read_world(args.world) if args.world else WorldConfig()
+    config = WorldConfig()
+    if args.world:
+        # As Gazebo: a name like worlds/empty.world is looked up on GAZEBO_RESOURCE_PATH.
+        paths = gazebo_paths(os.environ, gazebo_exports())
+        config = read_world(paths.find_world(args.world), paths.find_model)
     config.lockstep = args.lockstep
     config.limits = Limits.from_mapping(
         rospy.get_param('~limits', {}), rospy.resolve_name('~limits'), config.limits
@@ -91,7 +98,7 @@ def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
     MasterWatch()  # a restarted master learns the world's topics and services again
     try:
         config = world_config(args)
-    except (SdfError, LimitError) as exc:
+    except (SdfError, LimitError, ResourceNotFound) as exc:
         rospy.logfatal(str(exc))
         sys.exit(1)
     if config.skipped:
