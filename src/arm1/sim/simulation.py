@@ -16,6 +16,7 @@ from ..control.controller_manager import ControllerManager
 from ..control.loop import ControlLoop, control_period_ns
 from ..description.camera_sensor import CameraSensor, camera_sensors
 from ..description.limits import LimitError
+from ..description.massless import lighten
 from ..description.names import IllegalName, check_name, shown
 from ..physics.robot import Robot, RobotLoadError
 from ..physics.sensor_manager import Camera, SensorManager
@@ -118,6 +119,7 @@ class Simulation:
         try:
             description = parse_urdf(urdf_xml, limits)
             resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages, limits)
+            resolved = lighten(resolved, name)  # frame links weigh nothing, as in Gazebo
             sensors = camera_sensors(description, limits)
         except (UrdfError, LimitError) as exc:
             raise SpawnError("cannot spawn '%s': %s" % (name, exc))
@@ -147,6 +149,7 @@ class Simulation:
             os.unlink(prepared.load_args[0])
             raise
         model = Model(name, prepared.description, robot, file=prepared.load_args[0])
+        robot.set_mimics(mimic_links(prepared.description))
         try:
             self._attach_plugins(model, robot_namespace, controller_manager_factory)
             model.cameras = self.sensors.add_robot(name, prepared.load_args, prepared.sensors)
@@ -244,6 +247,17 @@ class Simulation:
         self.sensors.close()
         self.world.close()
         self._tmp.cleanup()
+
+
+def mimic_links(description: RobotModel) -> List[Tuple[str, str, float, float, float, float]]:
+    """The description's mimics as Robot.set_mimics takes them; the force cap is maxEffort,
+    else the follower's effort limit, else (no limit given) a stiff 1000."""
+    links = []
+    for m in description.mimics:
+        limit = description.joints[m.follower].limits.effort
+        force = m.max_effort if m.max_effort is not None else limit if limit else 1000.0
+        links.append((m.follower, m.leader, m.multiplier, m.offset, abs(force), m.sensitiveness))
+    return links
 
 
 def _no_packages(name: str) -> str:
