@@ -46,7 +46,11 @@ def parse_args(argv):
         metavar=('JOINT', 'VALUE'),
         help='initial joint position (repeatable)',
     )
-    parser.add_argument('-robot_namespace', default='')
+    parser.add_argument(
+        '-robot_namespace',
+        default=None,
+        help="namespace for plugins without <robotNamespace> (default: this node's, e.g. /)",
+    )
     parser.add_argument('-reference_frame', default='')
     parser.add_argument('-gazebo_namespace', default='/gazebo')
     parser.add_argument('-unpause', action='store_true')
@@ -83,6 +87,8 @@ def wait_for_param(name, timeout):
 def main(argv=None):
     args = parse_args(rospy.myargv(sys.argv if argv is None else argv)[1:])
     rospy.init_node('spawn_model', anonymous=True)
+    if args.robot_namespace is None:
+        args.robot_namespace = rospy.get_namespace()  # as upstream: the caller's, '/' at top
     if args.sdf:
         rospy.logfatal('spawn_model: -sdf models are not supported by the stand-in; use -urdf')
         return 1
