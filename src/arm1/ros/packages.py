@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import functools
 import os
-from typing import List
+from typing import List, Optional
 
 import rospkg
 
@@ -28,10 +28,10 @@ def find_package(name: str) -> str:
         raise LookupError(name) from None
 
 
-def gazebo_exports() -> List[PackageExports]:
+def gazebo_exports(rospack: Optional[rospkg.RosPack] = None) -> List[PackageExports]:
     """Every package's ``<export><gazebo_ros gazebo_model_path=... gazebo_media_path=.../>``,
     the paths gazebo_ros adds to Gazebo's (``${prefix}`` = the package's folder)."""
-    rospack = _rospack()
+    rospack = rospack or _rospack()
     found = []
     for name in sorted(rospack.list()):
         try:
@@ -40,7 +40,7 @@ def gazebo_exports() -> List[PackageExports]:
                 manifest.get_export('gazebo_ros', 'gazebo_model_path'),
                 manifest.get_export('gazebo_ros', 'gazebo_media_path'),
             )
-        except (rospkg.ResourceNotFound, rospkg.InvalidManifest, ValueError):
+        except Exception:  # noqa: BLE001  rospkg/catkin_pkg raise several kinds
             continue  # a broken manifest of some other package must not stop the world
         if exports.model_paths or exports.media_paths:
             found.append(exports)
