@@ -7,6 +7,7 @@ on links, joints and names, and mesh URIs that stay where they point.
 
 from __future__ import annotations
 
+import math
 import os
 import stat
 import xml.etree.ElementTree as ET
@@ -21,6 +22,11 @@ from .names import shown
 
 ACTUATED_TYPES = ('revolute', 'continuous', 'prismatic')
 CONTROL_PLUGIN = 'libgazebo_ros_control.so'
+# roboticsgroup's mimic joint plugin, under its old and its current name
+MIMIC_PLUGINS = (
+    'libroboticsgroup_upatras_gazebo_mimic_joint_plugin.so',
+    'libroboticsgroup_gazebo_mimic_joint_plugin.so',
+)
 
 
 class UrdfError(ValueError):
@@ -53,6 +59,18 @@ class Transmission:
 
 
 @dataclass
+class Mimic:
+    """A joint that follows another: follower = leader * multiplier + offset."""
+
+    follower: str
+    leader: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+    max_effort: Optional[float] = None  # None: the follower's effort limit
+    sensitiveness: float = 0.0  # acts only when |target - position| >= it
+
+
+@dataclass
 class ControlPlugin:
     """The gazebo_ros_control ``<plugin>`` of a description."""
 
@@ -71,6 +89,7 @@ class RobotModel:
     control_plugin: Optional[ControlPlugin] = None
     gazebo_refs: dict = field(default_factory=dict)  # link -> {tag: text}
     sensors: list = field(default_factory=list)  # (link, <sensor> Element)
+    mimics: list = field(default_factory=list)  # Mimic, one per follower
 
     def actuated_joints(self):
         """Joints named by a transmission, with their hardware interface."""
@@ -157,6 +176,7 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
     if not links:
         raise UrdfError("robot '%s' has no <link>" % root.get('name'))
     joints = {}
+    mimics: list = []
     for j, name in zip(joint_elements, _named(joint_elements, 'joint', limits)):
         jtype = j.get('type')
         parent, child = j.find('parent'), j.find('child')
@@ -178,12 +198,30 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
                 if safety.get('k_velocity') is None:
                     raise UrdfError('%s has no k_velocity' % what)
                 joint_limits.soft = SoftLimits(
-                    *(_float(safety.get(key, '0'), what)
-                      for key in ('soft_lower_limit', 'soft_upper_limit', 'k_position',
-                                  'k_velocity')))
+                    *(
+                        _float(safety.get(key, '0'), what)
+                        for key in (
+                            'soft_lower_limit',
+                            'soft_upper_limit',
+                            'k_position',
+                            'k_velocity',
+                        )
+                    )
+                )
         joints[name] = Joint(
             name, jtype or '', parent.get('link') or '', child.get('link') or '', joint_limits
         )
+        mimic = j.find('mimic')
+        if mimic is not None:
+            what = "joint '%s' <mimic>" % name
+            mimics.append(
+                Mimic(
+                    name,
+                    mimic.get('joint') or '',
+                    _float(mimic.get('multiplier', '1'), what),
+                    _float(mimic.get('offset', '0'), what),
+                )
+            )
     children = {j.child for j in joints.values()}
     roots = [name for name in links if name not in children]
     if len(roots) != 1:
@@ -207,6 +245,8 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
                         (p.findtext('robotSimType') or ControlPlugin.robot_sim_type).strip(),
                         _float(period, 'controlPeriod') if period else None,
                     )
+                elif p.get('filename') in MIMIC_PLUGINS:
+                    mimics.append(_mimic_plugin(p))
             continue
         tags = model.gazebo_refs.setdefault(ref, {})
         for child in g:
@@ -214,7 +254,53 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
                 model.sensors.append((ref, child))
             else:
                 tags[child.tag] = (child.text or '').strip()
+    model.mimics = _checked_mimics(mimics, joints)
     return model
+
+
+def _mimic_plugin(p: ET.Element) -> Mimic:
+    """roboticsgroup's plugin: <joint> leads, <mimicJoint> follows (hasPID is not modelled:
+    the follower is always a motor capped at maxEffort)."""
+    what = "mimic joint plugin '%s'" % (p.get('name') or '')
+
+    def number(tag: str, default: Optional[float]) -> Optional[float]:
+        text = p.findtext(tag)
+        return _float(text, '%s <%s>' % (what, tag)) if text and text.strip() else default
+
+    follower = (p.findtext('mimicJoint') or '').strip()
+    if not follower:
+        raise UrdfError('%s has no <mimicJoint>' % what)
+    return Mimic(
+        follower,
+        (p.findtext('joint') or '').strip(),
+        number('multiplier', 1.0) or 0.0,
+        number('offset', 0.0) or 0.0,
+        number('maxEffort', None),
+        abs(number('sensitiveness', 0.0) or 0.0),
+    )
+
+
+def _checked_mimics(mimics: list, joints: dict) -> list:
+    """One Mimic per follower (the plugin's wins over <mimic>), both joints movable."""
+    by_follower = {}
+    for m in mimics:
+        for role, name in (('follower', m.follower), ('leader', m.leader)):
+            joint = joints.get(name)
+            if joint is None or joint.type not in ACTUATED_TYPES:
+                raise UrdfError(
+                    'mimic of joint %s: %s %s is not a movable joint of the URDF'
+                    % (shown(m.follower), role, shown(name))
+                )
+        numbers = (m.multiplier, m.offset, m.sensitiveness, m.max_effort or 0.0)
+        if not all(math.isfinite(v) for v in numbers):
+            raise UrdfError(
+                "mimic of joint '%s': multiplier, offset, sensitiveness and maxEffort "
+                'must be finite' % m.follower
+            )
+        if m.follower == m.leader:
+            raise UrdfError("joint '%s' mimics itself" % m.follower)
+        by_follower[m.follower] = m
+    return list(by_follower.values())
 
 
 def resolve_mesh_uris(

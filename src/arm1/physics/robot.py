@@ -1,4 +1,5 @@
 """A robot in the pybullet world: loaded from a URDF file, read and driven by joint effort."""
+
 import pybullet as p
 
 
@@ -7,13 +8,20 @@ class RobotLoadError(ValueError):
 
 
 class Robot:
-    def __init__(self, client, urdf_path, position=(0, 0, 0), orientation=(0, 0, 0, 1),
-                 fixed_base=False):
+    def __init__(
+        self, client, urdf_path, position=(0, 0, 0), orientation=(0, 0, 0, 1), fixed_base=False
+    ):
         self.client = client
         # Inertia from the file: pybullet would otherwise derive it from the collision mesh.
         try:
-            self.body = p.loadURDF(urdf_path, position, orientation, useFixedBase=fixed_base,
-                                   flags=p.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+            self.body = p.loadURDF(
+                urdf_path,
+                position,
+                orientation,
+                useFixedBase=fixed_base,
+                flags=p.URDF_USE_INERTIA_FROM_FILE,
+                physicsClientId=client,
+            )
         except p.error as exc:
             raise RobotLoadError('pybullet could not build the robot (%s)' % exc)
         # pybullet poses a base by its centre of mass: keep that pose (not the link frame's)
@@ -28,15 +36,59 @@ class Robot:
             self.joint_index[info[1].decode()] = i
             self.link_index[info[12].decode()] = i
             # Gazebo has no velocity damping: pybullet's default 0.04 would add some.
-            p.changeDynamics(self.body, i, linearDamping=0, angularDamping=0,
-                             physicsClientId=client)
-        movable = [i for i in self.joint_index.values()
-                   if p.getJointInfo(self.body, i, physicsClientId=client)[2] != p.JOINT_FIXED]
+            p.changeDynamics(
+                self.body, i, linearDamping=0, angularDamping=0, physicsClientId=client
+            )
+        movable = [
+            i
+            for i in self.joint_index.values()
+            if p.getJointInfo(self.body, i, physicsClientId=client)[2] != p.JOINT_FIXED
+        ]
         if movable:
             # Each joint's default velocity motor would hold it still: switch it off so effort acts.
-            p.setJointMotorControlArray(self.body, movable, p.VELOCITY_CONTROL,
-                                        forces=[0.0] * len(movable), physicsClientId=client)
+            p.setJointMotorControlArray(
+                self.body,
+                movable,
+                p.VELOCITY_CONTROL,
+                forces=[0.0] * len(movable),
+                physicsClientId=client,
+            )
         self.movable = movable
+        # (follower index, leader index, multiplier, offset, max force, sensitiveness)
+        self.mimics = []
+
+    def set_mimics(self, mimics):
+        """``[(follower, leader, multiplier, offset, max_force, sensitiveness)]`` by joint name:
+        each follower is driven toward leader * multiplier + offset before every step."""
+        self.mimics = [
+            (self.joint_index[f], self.joint_index[lead], m, o, force, sens)
+            for f, lead, m, o, force, sens in mimics
+        ]
+
+    def follow_mimics(self):
+        """A position motor per follower, capped at its max force: a stiff, physical link
+        that pushes like a finger (a teleport would pass through what it grips), and,
+        unlike a gear constraint, takes an offset. Set last before the step, it overrides any
+        command the hardware interface gave the follower."""
+        for follower, leader, multiplier, offset, force, sensitiveness in self.mimics:
+            lead, lead_vel = p.getJointState(self.body, leader, physicsClientId=self.client)[:2]
+            target = lead * multiplier + offset
+            if sensitiveness > 0:
+                pos = p.getJointState(self.body, follower, physicsClientId=self.client)[0]
+                if abs(target - pos) < sensitiveness:
+                    target = pos
+            # positionGain 0.2 settles a light finger in a few steps; 1.0 oscillates.
+            p.setJointMotorControl2(
+                self.body,
+                follower,
+                p.POSITION_CONTROL,
+                targetPosition=target,
+                targetVelocity=lead_vel * multiplier,
+                force=force,
+                positionGain=0.2,
+                velocityGain=1.0,
+                physicsClientId=self.client,
+            )
 
     def indices(self, joint_names):
         return [self.joint_index[n] for n in joint_names]
@@ -55,34 +107,47 @@ class Robot:
         # A TORQUE_CONTROL command lasts one stepSimulation: call this before every step.
         if not indices:
             return
-        p.setJointMotorControlArray(self.body, indices, p.TORQUE_CONTROL, forces=efforts,
-                                    physicsClientId=self.client)
+        p.setJointMotorControlArray(
+            self.body, indices, p.TORQUE_CONTROL, forces=efforts, physicsClientId=self.client
+        )
 
     def set_velocity_motors(self, indices, velocities, max_forces):
         """Velocity motors (VELOCITY_CONTROL lasts until changed; a max force 0 turns one off)."""
         if not indices:
             return
-        p.setJointMotorControlArray(self.body, indices, p.VELOCITY_CONTROL,
-                                    targetVelocities=velocities, forces=max_forces,
-                                    physicsClientId=self.client)
+        p.setJointMotorControlArray(
+            self.body,
+            indices,
+            p.VELOCITY_CONTROL,
+            targetVelocities=velocities,
+            forces=max_forces,
+            physicsClientId=self.client,
+        )
 
     def set_positions(self, indices, positions):
         """Put joints there, at rest, for the next step (Gazebo's Joint::SetPosition)."""
         if not indices:
             return
-        p.resetJointStatesMultiDof(self.body, indices, targetValues=[[v] for v in positions],
-                                   targetVelocities=[[0.0]] * len(indices),
-                                   physicsClientId=self.client)
+        p.resetJointStatesMultiDof(
+            self.body,
+            indices,
+            targetValues=[[v] for v in positions],
+            targetVelocities=[[0.0]] * len(indices),
+            physicsClientId=self.client,
+        )
 
     def set_joint_positions(self, positions):
         """``{joint name: position}``, at rest."""
         for name, value in positions.items():
-            p.resetJointState(self.body, self.joint_index[name], value, 0.0,
-                              physicsClientId=self.client)
+            p.resetJointState(
+                self.body, self.joint_index[name], value, 0.0, physicsClientId=self.client
+            )
 
     def reset(self):
         """Back to the spawn pose, every joint at zero and at rest."""
-        p.resetBasePositionAndOrientation(self.body, *self.initial_pose, physicsClientId=self.client)
+        p.resetBasePositionAndOrientation(
+            self.body, *self.initial_pose, physicsClientId=self.client
+        )
         p.resetBaseVelocity(self.body, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
         for i in self.movable:
             p.resetJointState(self.body, i, 0.0, 0.0, physicsClientId=self.client)

@@ -86,6 +86,9 @@ class World:
         robot.remove()
 
     def step(self):
+        for robot in self.robots:
+            if robot.mimics:
+                robot.follow_mimics()
         p.stepSimulation(physicsClientId=self.client)
 
     def reset(self):
