@@ -56,3 +56,30 @@ def test_spawn_model_leaves_the_namespace_to_the_caller_by_default():
     assert parse_args(['-urdf', '-file', 'x.urdf', '-model', 'm']).robot_namespace is None
     given = parse_args(['-urdf', '-file', 'x', '-model', 'm', '-robot_namespace', '/a'])
     assert given.robot_namespace == '/a'
+
+
+CAMERA_BOX = (
+    '<robot name="cam">'
+    + box_link('body')
+    + '<gazebo reference="body"><sensor type="camera" name="eye"><update_rate>1</update_rate>'
+    '<camera><image><width>8</width><height>8</height></image></camera>'
+    '<plugin filename="libgazebo_ros_camera.so"><cameraName>eye</cameraName>%s</plugin>'
+    '</sensor></gazebo></robot>'
+)
+
+
+@pytest.mark.parametrize(
+    'own, request_ns, expected',
+    [
+        ('', '/ur', '/ur/eye/image_raw'),  # none of its own: the request's goes in
+        ('', '/', '/eye/image_raw'),  # spawn_model's top-level default
+        ('<robotNamespace>/mine</robotNamespace>', '/ur', '/mine/eye/image_raw'),  # its own wins
+    ],
+)
+def test_camera_plugin_gets_the_request_namespace_when_it_has_none(own, request_ns, expected):
+    sim = Simulation(WorldConfig())
+    try:
+        model = sim.spawn_urdf('cam', CAMERA_BOX % own, robot_namespace=request_ns)
+        assert [c.sensor.image_topic for c in model.cameras] == [expected]
+    finally:
+        sim.close()

@@ -9,7 +9,7 @@ import itertools
 import math
 import os
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from ..control.controller_manager import ControllerManager
@@ -152,7 +152,10 @@ class Simulation:
         robot.set_mimics(mimic_links(prepared.description))
         try:
             self._attach_plugins(model, robot_namespace, controller_manager_factory)
-            model.cameras = self.sensors.add_robot(name, prepared.load_args, prepared.sensors)
+            # As Gazebo's spawn: a sensor plugin without <robotNamespace> gets the request's.
+            sensors = [replace(c, robot_namespace=c.robot_namespace or robot_namespace)
+                       for c in prepared.sensors]
+            model.cameras = self.sensors.add_robot(name, prepared.load_args, sensors)
             if attach is not None:
                 attach(model)
             plugin, manager = model.description.control_plugin, model.controller_manager
