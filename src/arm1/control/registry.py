@@ -4,12 +4,14 @@ What pluginlib's controller_plugins.xml is to ros_control: a new type is its own
 (a Controller subclass naming its ``type_name`` and ``interface``), imported here and
 listed in CONTROLLER_CLASSES.
 """
+
 from __future__ import annotations
 
 from typing import Dict, Tuple, Type
 
 from .controller import Controller
 from .forward_command_controller import FORWARD_CONTROLLERS
+from .gripper_action_controller import GripperActionController, PositionGripperActionController
 from .joint_position_controller import JointPositionController
 from .joint_state_controller import JointStateController
 from .joint_trajectory_controller import (
@@ -27,6 +29,8 @@ CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = (
     VelocityJointTrajectoryController,
     JointVelocityController,
     *FORWARD_CONTROLLERS,
+    GripperActionController,
+    PositionGripperActionController,
 )
 
 
@@ -34,8 +38,9 @@ def by_type_name(classes: Tuple[Type[Controller], ...]) -> Dict[str, Type[Contro
     types: Dict[str, Type[Controller]] = {}
     for cls in classes:
         if not cls.type_name or cls.type_name in types:
-            raise TypeError('%s: type_name %r is empty or already taken'
-                            % (cls.__name__, cls.type_name))
+            raise TypeError(
+                '%s: type_name %r is empty or already taken' % (cls.__name__, cls.type_name)
+            )
         types[cls.type_name] = cls
     return types
 
