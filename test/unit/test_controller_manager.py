@@ -50,12 +50,14 @@ def states(cm):
 def test_controller_types():
     cm = ControllerManager(None, FakeRos().node_handle, '/x')
     assert cm.controller_types() == [
+        'effort_controllers/GripperActionController',
         'effort_controllers/JointEffortController',
         'effort_controllers/JointGroupEffortController',
         JPC,
         'effort_controllers/JointTrajectoryController',
         'effort_controllers/JointVelocityController',
         JSC,
+        'position_controllers/GripperActionController',
         'position_controllers/JointGroupPositionController',
         'position_controllers/JointPositionController',
         'position_controllers/JointTrajectoryController',
