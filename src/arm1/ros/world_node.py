@@ -19,6 +19,7 @@ from ..description.sdf_world import SdfError, WorldConfig, read_world
 from ..sim.pacer import Pacer, wall_period
 from ..sim.simulation import Model, Simulation
 from .gazebo_ros_api import GazeboRosApi
+from .gazebo_state_api import GazeboStateApi
 from .master_watch import MasterWatch
 from .node_handle import route_core_logs
 from .packages import gazebo_exports
@@ -36,6 +37,15 @@ class WorldNode:
         clock = SimClock(rospy.get_param('~pub_clock_frequency', 100))
         self.loop = WorldLoop(sim, self.calls, clock, paused)
         self.api = GazeboRosApi(sim, self.calls, self.loop)
+        self.pacer: Optional[Pacer] = None
+        self.state_api = GazeboStateApi(sim, self.calls, self.loop, self._set_update_rate)
+
+    def _set_update_rate(self, rate: float) -> None:
+        """set_physics_properties' max_update_rate (0: as fast as it goes). Physics thread."""
+        c = self.sim.config
+        if self.pacer is not None:
+            self.pacer.period = wall_period(c.max_step_size, c.real_time_factor, rate)
+            self.pacer.restart()
 
     def spawn(
         self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float], namespace: str = ''
@@ -43,6 +53,7 @@ class WorldNode:
         return self.api.spawn(name, xml, xyz, quat, namespace)
 
     def run(self, pacer: Pacer) -> None:
+        self.pacer = pacer
         self.loop.run(pacer)
 
 

@@ -18,10 +18,10 @@ from ..description.camera_sensor import CameraSensor, camera_sensors
 from ..description.limits import LimitError
 from ..description.massless import lighten
 from ..description.names import IllegalName, check_name, shown
-from ..physics.robot import Robot, RobotLoadError
-from ..physics.sensor_manager import Camera, SensorManager
 from ..description.sdf_world import WorldConfig
 from ..description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
+from ..physics.robot import Robot, RobotLoadError
+from ..physics.sensor_manager import Camera, SensorManager
 from ..physics.world import World
 from .robot_hw_sim import DefaultRobotHWSim
 
@@ -76,6 +76,8 @@ class Simulation:
         self._tmp = tempfile.TemporaryDirectory(prefix='arm1-sim-')
         self._files = itertools.count(1)  # the world names its files itself, never from requests
         self.sensors = SensorManager(world_config)
+        # Called with the sim time before each physics step (wrenches, model_states).
+        self.before_step: List[Callable[[int], None]] = []
 
     @property
     def time_ns(self) -> int:
@@ -229,6 +231,8 @@ class Simulation:
         for model in self._controlled:
             if model.control is not None:
                 model.control.update(now)
+        for hook in self.before_step:
+            hook(now)
         self.world.step()
         self.steps += 1
         if self.sensors.cameras:

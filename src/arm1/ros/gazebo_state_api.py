@@ -1,0 +1,284 @@
+"""gazebo_ros's state and property services and topics (upstream: gazebo_ros_api_plugin).
+
+Requests are checked on rospy's threads as far as they can be without the world; what
+reads or moves bodies runs on the physics thread (SimThreadCalls). /gazebo/model_states
+and /gazebo/link_states go out before every step, from the physics thread, only while
+someone subscribes (as Gazebo's WorldUpdateBegin connection).
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import Any, Callable, Dict, List, Optional, Tuple
+
+import rospy
+from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates
+from gazebo_msgs.srv import (
+    ApplyBodyWrench,
+    BodyRequest,
+    GetJointProperties,
+    GetLinkProperties,
+    GetLinkState,
+    GetModelProperties,
+    GetModelState,
+    GetPhysicsProperties,
+    GetWorldProperties,
+    SetModelState,
+    SetPhysicsProperties,
+)
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+
+from ..sim import model_state as ms
+from ..sim.model_state import State, StateError
+from ..sim.simulation import Simulation
+from .sim_thread import SimThreadCalls
+from .world_loop import WorldLoop
+
+
+def state_from_msg(pose: Pose, twist: Twist) -> State:
+    p, o = pose.position, pose.orientation
+    return State((p.x, p.y, p.z), (o.x, o.y, o.z, o.w), _vec(twist.linear), _vec(twist.angular))
+
+
+def pose_msg(state: State) -> Pose:
+    return Pose(Point(*state.position), Quaternion(*state.orientation))
+
+
+def twist_msg(state: State) -> Twist:
+    return Twist(Vector3(*state.linear), Vector3(*state.angular))
+
+
+def _vec(v: Any) -> Tuple[float, float, float]:
+    return (v.x, v.y, v.z)
+
+
+def states_msg(cls: Any, names: List[str], states: List[State]) -> Any:
+    return cls(names, [pose_msg(s) for s in states], [twist_msg(s) for s in states])
+
+
+class LatestPublisher:
+    """Builds and publishes states messages on its own thread, so the physics thread only
+    reads pybullet. Keeps the latest reading: if publishing lags, older ones are dropped."""
+
+    def __init__(self, publisher: Any, cls: Any) -> None:
+        self.publisher, self.cls = publisher, cls
+        self._cond = threading.Condition()
+        self._latest: Optional[Tuple[List[str], List[State]]] = None
+        self._stopped = False
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def put(self, reading: Tuple[List[str], List[State]]) -> None:
+        with self._cond:
+            self._latest = reading
+            self._cond.notify()
+
+    def stop(self) -> None:
+        with self._cond:
+            self._stopped = True
+            self._cond.notify()
+
+    def _run(self) -> None:
+        while True:
+            with self._cond:
+                while self._latest is None and not self._stopped:
+                    self._cond.wait()
+                if self._stopped:
+                    return
+                reading, self._latest = self._latest, None
+            assert reading is not None
+            try:
+                self.publisher.publish(states_msg(self.cls, *reading))
+            except rospy.ROSException:
+                return  # shutting down
+
+
+class GazeboStateApi:
+    def __init__(
+        self,
+        sim: Simulation,
+        calls: SimThreadCalls,
+        loop: WorldLoop,
+        on_update_rate: Optional[Callable[[float], None]] = None,
+    ) -> None:
+        self.sim, self.calls, self.loop = sim, calls, loop
+        self.on_update_rate = on_update_rate
+        self.wrenches = ms.Wrenches()
+        self._seq: Dict[str, int] = {}  # get_model_state's header.seq, per model as upstream
+        self._services = [
+            rospy.Service('~get_model_state', GetModelState, self._get_model_state),
+            rospy.Service('~set_model_state', SetModelState, self._set_model_state),
+            rospy.Service('~get_link_state', GetLinkState, self._get_link_state),
+            rospy.Service('~get_model_properties', GetModelProperties, self._model_properties),
+            rospy.Service('~get_world_properties', GetWorldProperties, self._world_properties),
+            rospy.Service('~get_link_properties', GetLinkProperties, self._link_properties),
+            rospy.Service('~get_joint_properties', GetJointProperties, self._joint_properties),
+            rospy.Service('~apply_body_wrench', ApplyBodyWrench, self._apply_body_wrench),
+            rospy.Service('~clear_body_wrenches', BodyRequest, self._clear_body_wrenches),
+            rospy.Service('~get_physics_properties', GetPhysicsProperties, self._get_physics),
+            rospy.Service('~set_physics_properties', SetPhysicsProperties, self._set_physics),
+        ]
+        self.model_states = rospy.Publisher('~model_states', ModelStates, queue_size=10)
+        self.link_states = rospy.Publisher('~link_states', LinkStates, queue_size=10)
+        self._model_out = LatestPublisher(self.model_states, ModelStates)
+        self._link_out = LatestPublisher(self.link_states, LinkStates)
+        self._subscribers = [
+            rospy.Subscriber(
+                '~set_model_state', ModelState, self._set_model_state_topic, queue_size=10
+            )
+        ]
+        sim.before_step.append(self._before_step)
+
+    def shutdown(self) -> None:
+        for s in self._services:
+            s.shutdown()
+        for sub in self._subscribers:
+            sub.unregister()
+        self._model_out.stop()
+        self._link_out.stop()
+        if self._before_step in self.sim.before_step:
+            self.sim.before_step.remove(self._before_step)
+
+    # Physics thread, before every step.
+    def _before_step(self, now_ns: int) -> None:
+        if self.wrenches.jobs:
+            self.wrenches.apply(self.sim, now_ns)
+        if self.model_states.get_num_connections():
+            self._model_out.put(ms.model_states(self.sim))
+        if self.link_states.get_num_connections():
+            self._link_out.put(ms.link_states(self.sim))
+
+    def _get_model_state(self, req: Any) -> Any:
+        res = GetModelState._response_class()
+        res.header.frame_id = req.relative_entity_name
+        try:
+            state = self.calls.call(
+                ms.get_model_state, self.sim, req.model_name, req.relative_entity_name
+            )
+        except StateError as exc:
+            res.success, res.status_message = False, str(exc)
+            return res
+        self._seq[req.model_name] = self._seq.get(req.model_name, 0) + 1
+        res.header.seq = self._seq[req.model_name]
+        res.header.stamp = rospy.Time.now()
+        res.pose, res.twist = pose_msg(state), twist_msg(state)
+        res.success, res.status_message = True, 'GetModelState: got properties'
+        return res
+
+    def _set(self, m: Any) -> Tuple[bool, str]:
+        try:
+            self.calls.call(
+                ms.set_model_state,
+                self.sim,
+                m.model_name,
+                state_from_msg(m.pose, m.twist),
+                m.reference_frame,
+            )
+        except StateError as exc:
+            return False, str(exc)
+        return True, 'SetModelState: set model state done'
+
+    def _set_model_state(self, req: Any) -> Tuple[bool, str]:
+        return self._set(req.model_state)
+
+    def _set_model_state_topic(self, msg: Any) -> None:
+        ok, message = self._set(msg)  # upstream discards the result; we log a refusal
+        if not ok:
+            rospy.logwarn(message)
+
+    def _get_link_state(self, req: Any) -> Any:
+        res = GetLinkState._response_class()
+        try:
+            state = self.calls.call(ms.get_link_state, self.sim, req.link_name, req.reference_frame)
+        except StateError as exc:
+            res.success, res.status_message = False, str(exc)
+            return res
+        res.link_state = LinkState(
+            req.link_name, pose_msg(state), twist_msg(state), req.reference_frame
+        )
+        res.success, res.status_message = True, 'GetLinkState: got state'
+        return res
+
+    def _model_properties(self, req: Any) -> Any:
+        res = GetModelProperties._response_class()
+        try:
+            props = self.calls.call(ms.get_model_properties, self.sim, req.model_name)
+        except StateError as exc:
+            res.success, res.status_message = False, str(exc)
+            return res
+        res.body_names, res.joint_names = props.body_names, props.joint_names
+        res.geom_names = ['%s_collision' % b for b in props.body_names]
+        res.is_static = props.is_static
+        res.success, res.status_message = True, 'GetModelProperties: got properties'
+        return res
+
+    def _world_properties(self, req: Any) -> Any:
+        names, t = self.calls.call(lambda: (list(self.sim.models), self.sim.time_ns))
+        return GetWorldProperties._response_class(
+            t * 1e-9, names, True, True, 'GetWorldProperties: got properties'
+        )
+
+    def _link_properties(self, req: Any) -> Any:
+        res = GetLinkProperties._response_class()
+        try:
+            mass, com, inertia = self.calls.call(ms.get_link_properties, self.sim, req.link_name)
+        except StateError as exc:
+            res.success, res.status_message = False, str(exc)
+            return res
+        res.com = Pose(Point(*com), Quaternion(0, 0, 0, 1))
+        res.gravity_mode, res.mass = True, mass
+        res.ixx, res.iyy, res.izz = inertia
+        res.success, res.status_message = True, 'GetLinkProperties: got properties'
+        return res
+
+    def _joint_properties(self, req: Any) -> Any:
+        res = GetJointProperties._response_class()
+        try:
+            position, rate = self.calls.call(ms.get_joint_properties, self.sim, req.joint_name)
+        except StateError as exc:
+            res.success, res.status_message = False, str(exc)
+            return res
+        res.type = GetJointProperties._response_class.REVOLUTE  # always 0 upstream
+        res.position, res.rate = [position], [rate]
+        res.success, res.status_message = True, 'GetJointProperties: got properties'
+        return res
+
+    def _apply_body_wrench(self, req: Any) -> Tuple[bool, str]:
+        w = req.wrench
+        try:
+            self.calls.call(
+                self.wrenches.add,
+                self.sim,
+                req.body_name,
+                req.reference_frame,
+                _vec(req.reference_point),
+                _vec(w.force),
+                _vec(w.torque),
+                req.start_time.to_nsec(),
+                req.duration.to_nsec(),
+            )
+        except StateError as exc:
+            return False, str(exc)
+        return True, ''
+
+    def _clear_body_wrenches(self, req: Any) -> List[Any]:
+        self.calls.call(self.wrenches.clear, req.body_name)
+        return []
+
+    def _get_physics(self, req: Any) -> Any:
+        props = self.calls.call(ms.get_physics_properties, self.sim)
+        res = GetPhysicsProperties._response_class()
+        res.time_step, res.pause = props.time_step, self.loop.paused
+        res.max_update_rate, res.gravity = props.max_update_rate, Vector3(*props.gravity)
+        res.success, res.status_message = True, 'GetPhysicsProperties: got properties'
+        return res
+
+    def _set_physics(self, req: Any) -> Tuple[bool, str]:
+        props = ms.PhysicsProperties(req.time_step, req.max_update_rate, _vec(req.gravity))
+        try:
+            self.calls.call(ms.set_physics_properties, self.sim, props)
+        except StateError as exc:
+            return False, str(exc)
+        if self.on_update_rate is not None:
+            self.calls.call(self.on_update_rate, props.max_update_rate)
+        return True, 'physics engine updated'

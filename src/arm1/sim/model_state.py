@@ -1,0 +1,379 @@
+"""Model and link states, wrenches and physics properties of a Simulation, ROS-free.
+
+What gazebo_ros_api_plugin's state services do, with its frames and status messages
+(``StateError`` carries the message). Sim thread only: these read and move pybullet bodies.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Sequence, Tuple
+
+from ..physics import body_state
+from .simulation import Model, Simulation
+
+Vec = Tuple[float, float, float]
+Quat = Tuple[float, float, float, float]
+WORLD_NAMES = ('', 'world', 'map', '/map')
+
+
+class StateError(ValueError):
+    """A request the world refuses: the message is upstream's status_message."""
+
+
+@dataclass
+class State:
+    """A frame's pose and its origin's twist, world axes unless said otherwise."""
+
+    position: Vec = (0.0, 0.0, 0.0)
+    orientation: Quat = (0.0, 0.0, 0.0, 1.0)
+    linear: Vec = (0.0, 0.0, 0.0)
+    angular: Vec = (0.0, 0.0, 0.0)
+
+
+# --- quaternions (x, y, z, w) -------------------------------------------------------------
+
+
+def q_mul(a: Sequence[float], b: Sequence[float]) -> Quat:
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+        aw * bw - ax * bx - ay * by - az * bz,
+    )
+
+
+def q_inv(q: Sequence[float]) -> Quat:
+    return (-q[0], -q[1], -q[2], q[3])
+
+
+def rotate(q: Sequence[float], v: Sequence[float]) -> Vec:
+    x, y, z, _ = q_mul(q_mul(q, (v[0], v[1], v[2], 0.0)), q_inv(q))
+    return (x, y, z)
+
+
+def normalized(q: Sequence[float]) -> Quat:
+    n = math.sqrt(sum(c * c for c in q))
+    if n == 0:
+        return (0.0, 0.0, 0.0, 1.0)  # as upstream: all-zero becomes identity
+    return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
+
+
+def _sub(a: Sequence[float], b: Sequence[float]) -> Vec:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _add(a: Sequence[float], b: Sequence[float]) -> Vec:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def relative(state: State, frame: State) -> State:
+    """``state`` seen from ``frame``: pose F^-1*M, velocities R_F^T (v_M - v_F) (upstream has
+    no w x r transport term)."""
+    inv = q_inv(frame.orientation)
+    return State(
+        rotate(inv, _sub(state.position, frame.position)),
+        q_mul(inv, state.orientation),
+        rotate(inv, _sub(state.linear, frame.linear)),
+        rotate(inv, _sub(state.angular, frame.angular)),
+    )
+
+
+def compose(frame: State, target: State) -> State:
+    """``target`` given in ``frame``, in the world: pose F*T, velocities rotated by R_F only."""
+    q = frame.orientation
+    return State(
+        _add(frame.position, rotate(q, target.position)),
+        q_mul(q, target.orientation),
+        rotate(q, target.linear),
+        rotate(q, target.angular),
+    )
+
+
+def finite(*vectors: Sequence[float]) -> bool:
+    return all(math.isfinite(v) for vec in vectors for v in vec)
+
+
+# --- entities -------------------------------------------------------------------------------
+
+
+def _link_state(model: Model, link: str) -> State:
+    pos, orn, lin, ang = body_state.link_states(model.robot)[link]
+    return State(pos, orn, lin, ang)
+
+
+def model_state(model: Model) -> State:
+    """The model frame (its root link's frame, pybullet's base) and that link's twist."""
+    pos, orn, lin, ang = body_state.base_state(model.robot)
+    return State(pos, orn, lin, ang)
+
+
+def find_link(sim: Simulation, name: str) -> Optional[Tuple[Model, str]]:
+    """``model::link`` or a bare link name (the first model, in spawn order, that has it)."""
+    if '::' in name:
+        model_name, _, link = name.partition('::')
+        model = sim.models.get(model_name)
+        if model is not None and link in model.robot.link_index:
+            return model, link
+        return None
+    for model in sim.models.values():
+        if name in model.robot.link_index:
+            return model, name
+    return None
+
+
+def frame_state(sim: Simulation, name: str) -> Optional[State]:
+    """The state of the entity ``name``; None for the world; KeyError if there is none."""
+    model = sim.models.get(name)
+    if model is not None:
+        return model_state(model)
+    found = find_link(sim, name)
+    if found is not None:
+        return _link_state(*found)
+    if name in WORLD_NAMES:
+        return None
+    raise KeyError(name)
+
+
+def get_model_state(sim: Simulation, name: str, reference: str) -> State:
+    model = sim.models.get(name)
+    if model is None:
+        raise StateError('GetModelState: model [%s] does not exist' % name)
+    try:
+        frame = frame_state(sim, reference)
+    except KeyError:
+        raise StateError(
+            'GetModelState: reference relative_entity_name [%s] not found, did you '
+            'forget to scope the body by model name?' % reference
+        )
+    state = model_state(model)
+    return state if frame is None else relative(state, frame)
+
+
+def set_model_state(sim: Simulation, name: str, target: State, reference: str) -> None:
+    model = sim.models.get(name)
+    if model is None:
+        raise StateError('SetModelState: model [%s] does not exist' % name)
+    if not finite(target.position, target.orientation, target.linear, target.angular):
+        raise StateError("SetModelState: model [%s]'s state is not all finite numbers" % name)
+    try:
+        frame = frame_state(sim, reference)
+    except KeyError:
+        raise StateError(
+            'SetModelState: specified reference frame entity [%s] does not exist' % reference
+        )
+    target = State(target.position, normalized(target.orientation), target.linear, target.angular)
+    world = target if frame is None else compose(frame, target)
+    body_state.set_base_state(
+        model.robot, world.position, world.orientation, world.linear, world.angular
+    )
+
+
+def get_link_state(sim: Simulation, link: str, reference: str) -> State:
+    found = find_link(sim, link)
+    if found is None:
+        raise StateError(
+            'GetLinkState: link [%s] not found, did you forget to scope the link by '
+            'model name?' % link
+        )
+    try:
+        frame = frame_state(sim, reference)
+    except KeyError:
+        raise StateError(
+            'GetLinkState: reference reference_frame [%s] not found, did you forget '
+            'to scope the link by model name?' % reference
+        )
+    state = _link_state(*found)
+    return state if frame is None else relative(state, frame)
+
+
+def model_states(sim: Simulation) -> Tuple[List[str], List[State]]:
+    """Every model's name and state, for /gazebo/model_states."""
+    names = list(sim.models)
+    return names, [model_state(m) for m in sim.models.values()]
+
+
+def link_states(sim: Simulation) -> Tuple[List[str], List[State]]:
+    """Every link, scoped ``model::link``, for /gazebo/link_states."""
+    names: List[str] = []
+    states: List[State] = []
+    for model in sim.models.values():
+        for link, (pos, orn, lin, ang) in body_state.link_states(model.robot).items():
+            names.append('%s::%s' % (model.name, link))
+            states.append(State(pos, orn, lin, ang))
+    return names, states
+
+
+# --- properties ------------------------------------------------------------------------------
+
+
+@dataclass
+class ModelProperties:
+    body_names: List[str]
+    joint_names: List[str]
+    is_static: bool
+
+
+def get_model_properties(sim: Simulation, name: str) -> ModelProperties:
+    model = sim.models.get(name)
+    if model is None:
+        raise StateError('GetModelProperties: model [%s] does not exist' % name)
+    return ModelProperties(
+        list(model.robot.link_index),
+        list(model.robot.joint_index),
+        model.description.root_link == 'world',
+    )
+
+
+def find_joint(sim: Simulation, name: str) -> Optional[Tuple[Model, str]]:
+    """Bare or ``model::joint``; the first model, in spawn order, that has it."""
+    for model in sim.models.values():
+        bare = name[len(model.name) + 2 :] if name.startswith(model.name + '::') else name
+        if bare in model.robot.joint_index:
+            return model, bare
+    return None
+
+
+def get_joint_properties(sim: Simulation, name: str) -> Tuple[float, float]:
+    """Position and rate of the joint's first axis."""
+    found = find_joint(sim, name)
+    if found is None:
+        raise StateError('GetJointProperties: joint [%s] not found' % name)
+    model, joint = found
+    return body_state.joint_state(model.robot, joint)
+
+
+def get_link_properties(sim: Simulation, name: str) -> Tuple[float, Vec, Vec]:
+    """Mass, centre of mass in the link frame, inertia diagonal."""
+    found = find_link(sim, name)
+    if found is None:
+        raise StateError(
+            'GetLinkProperties: link [%s] not found, did you forget to scope the '
+            'link by model name?' % name
+        )
+    return body_state.link_properties(found[0].robot, found[1])
+
+
+# --- wrenches ---------------------------------------------------------------------------------
+
+
+@dataclass
+class WrenchJob:
+    model: Model
+    link: str
+    force: Vec
+    torque: Vec
+    start_ns: int
+    duration_ns: int  # negative: until cleared
+
+
+@dataclass
+class Wrenches:
+    """apply_body_wrench jobs: pybullet's external forces last one step, so each active job
+    is applied again before every step, between its start and start + duration."""
+
+    jobs: List[WrenchJob] = field(default_factory=list)
+
+    def add(
+        self,
+        sim: Simulation,
+        body: str,
+        reference: str,
+        point: Sequence[float],
+        force: Sequence[float],
+        torque: Sequence[float],
+        start_ns: int,
+        duration_ns: int,
+    ) -> None:
+        found = find_link(sim, body)
+        if found is None:
+            raise StateError('ApplyBodyWrench: body [%s] does not exist' % body)
+        if not finite(point, force, torque):
+            raise StateError('ApplyBodyWrench: wrench on [%s] is not all finite numbers' % body)
+        try:
+            frame = frame_state(sim, reference)
+        except KeyError:
+            raise StateError('ApplyBodyWrench: reference_frame [%s] not found' % reference)
+        torque = _add(torque, body_state.cross(point, force))
+        if frame is not None:
+            # As upstream: rotated into the frame's axes as seen from the body, then applied
+            # as world-axis vectors (gazebo_ros_pkgs#310).
+            link = _link_state(*found)
+            q = q_mul(q_inv(link.orientation), frame.orientation)
+            offset = rotate(q_inv(link.orientation), _sub(frame.position, link.position))
+            force, torque = rotate(q, force), rotate(q, torque)
+            torque = _add(torque, body_state.cross(offset, force))
+        self.jobs.append(
+            WrenchJob(
+                found[0],
+                found[1],
+                (force[0], force[1], force[2]),
+                (torque[0], torque[1], torque[2]),
+                max(start_ns, sim.time_ns),
+                duration_ns,
+            )
+        )
+
+    def clear(self, scoped_body: str) -> None:
+        """clear_body_wrenches: only the scoped ``model::link`` name matches, as upstream."""
+        self.jobs = [j for j in self.jobs if '%s::%s' % (j.model.name, j.link) != scoped_body]
+
+    def forget_model(self, name: str) -> None:
+        self.jobs = [j for j in self.jobs if j.model.name != name]
+
+    def apply(self, sim: Simulation, now_ns: int) -> None:
+        """Before a step from ``now_ns``: the step ends at t = now + step, as Gazebo's update."""
+        t = now_ns + sim.step_ns
+        keep: List[WrenchJob] = []
+        latest: Dict[Tuple[int, str], WrenchJob] = {}
+        for job in self.jobs:
+            if job.model.name not in sim.models or sim.models[job.model.name] is not job.model:
+                continue  # its model was deleted
+            end = job.start_ns + job.duration_ns
+            if job.duration_ns >= 0 and t > end:
+                continue
+            keep.append(job)
+            if job.start_ns <= t:
+                latest[(id(job.model), job.link)] = job  # upstream replaces: the later job acts
+        self.jobs = keep
+        for job in latest.values():
+            body_state.apply_wrench(job.model.robot, job.link, job.force, job.torque)
+
+
+# --- physics properties --------------------------------------------------------------------
+
+
+@dataclass
+class PhysicsProperties:
+    time_step: float
+    max_update_rate: float
+    gravity: Vec
+
+
+def get_physics_properties(sim: Simulation) -> PhysicsProperties:
+    c = sim.config
+    return PhysicsProperties(c.max_step_size, c.real_time_update_rate, tuple(c.gravity))
+
+
+def set_physics_properties(sim: Simulation, props: PhysicsProperties) -> None:
+    """Gravity goes to pybullet at once; the update rate is the pacer's (the ROS layer hands
+    it on); the time step can only be kept."""
+    if not (math.isfinite(props.time_step) and props.time_step > 0):
+        raise StateError(
+            'SetPhysicsProperties: time_step %r is not a positive number' % props.time_step
+        )
+    if not finite(props.gravity) or not math.isfinite(props.max_update_rate):
+        raise StateError('SetPhysicsProperties: gravity and max_update_rate must be finite')
+    if props.time_step != sim.config.max_step_size:
+        # Controllers' periods and the hardware's were fixed at spawn from the step length.
+        raise StateError(
+            'SetPhysicsProperties: time_step %g differs from the running %g: this '
+            'stand-in cannot change it while running (set <max_step_size> in the '
+            'world file)' % (props.time_step, sim.config.max_step_size)
+        )
+    sim.config.gravity = tuple(props.gravity)
+    sim.config.real_time_update_rate = props.max_update_rate
+    body_state.set_gravity(sim.world.client, props.gravity)
