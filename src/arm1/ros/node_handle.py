@@ -203,10 +203,26 @@ def _actions() -> Dict[str, Tuple[Any, Callable[[Any], Any], type, type, Fill]]:
         FollowJointTrajectoryAction,
         FollowJointTrajectoryFeedback,
         FollowJointTrajectoryResult,
+        GripperCommandAction,
+        GripperCommandFeedback,
+        GripperCommandResult,
     )
     return {'control_msgs/FollowJointTrajectory': (
         FollowJointTrajectoryAction, read_follow_joint_trajectory_goal,
-        FollowJointTrajectoryResult, FollowJointTrajectoryFeedback, _fill_trajectory_state)}
+        FollowJointTrajectoryResult, FollowJointTrajectoryFeedback, _fill_trajectory_state),
+        'control_msgs/GripperCommand': (
+        GripperCommandAction, read_gripper_command_goal,
+        GripperCommandResult, GripperCommandFeedback, _fill_fields)}
+
+
+def read_gripper_command_goal(goal: Any) -> Dict[str, Any]:
+    return dict(command=dict(position=goal.command.position,
+                             max_effort=goal.command.max_effort))
+
+
+def _fill_fields(msg: Any, fields: Fields) -> None:
+    for key, value in fields.items():
+        setattr(msg, key, value)
 
 
 ACTIONS = _actions()
