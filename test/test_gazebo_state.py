@@ -9,15 +9,17 @@ import time
 
 import rospy
 import rostest
-from gazebo_msgs.msg import ModelState, ModelStates
+from gazebo_msgs.msg import LinkState, ModelState, ModelStates
 from gazebo_msgs.srv import (
     ApplyBodyWrench,
+    ApplyJointEffort,
     GetJointProperties,
     GetLinkState,
     GetModelProperties,
     GetModelState,
     GetPhysicsProperties,
     GetWorldProperties,
+    SetLinkState,
     SetModelState,
     SpawnModel,
 )
@@ -126,6 +128,16 @@ class GazeboState(WorldTestCase):
         self.assertGreater(after.z - before.z, 0.05, 'the box did not rise')
         self.assertGreater(after.x - before.x, 0.005, 'the box did not move along +x')
 
+    def test_set_link_state_moves_the_box_and_get_link_state_reads_it(self):
+        res = proxy('set_link_state', SetLinkState)(
+            LinkState('box::body', Pose(Point(0.4, 0.4, 0.05), Quaternion(0, 0, 0, 1)), Twist(), '')
+        )
+        self.assertTrue(res.success, res.status_message)
+        got = proxy('get_link_state', GetLinkState)('box::body', 'world')
+        self.assertTrue(got.success, got.status_message)
+        self.assertEqual(got.link_state.link_name, 'box::body')
+        self.assertAlmostEqual(got.link_state.pose.position.x, 0.4, delta=0.01)
+
     def test_world_model_and_joint_properties(self):
         world = proxy('get_world_properties', GetWorldProperties)()
         self.assertTrue(world.success)
@@ -170,6 +182,14 @@ class GazeboState(WorldTestCase):
         )
         self.assertFalse(res.success)
         self.assertIn('ghost::body', res.status_message)
+        res = proxy('apply_joint_effort', ApplyJointEffort)(
+            'nojoint', 1.0, rospy.Time(0), rospy.Duration(1)
+        )
+        self.assertFalse(res.success)
+        self.assertIn('nojoint', res.status_message)
+        res = proxy('set_link_state', SetLinkState)(LinkState('arm1::nolink', Pose(), Twist(), ''))
+        self.assertFalse(res.success)
+        self.assertIn('arm1::nolink', res.status_message)
         self.assertTrue(
             wait_for(lambda: self.clock.last().clock > before, 10),
             '/clock stopped after bad requests',

@@ -137,3 +137,32 @@ def test_wrench_unknown_body_and_frame_are_named(sim):
         w.add(sim, 'ghost', '', (0, 0, 0), (1, 0, 0), (0, 0, 0), 0, -1)
     with pytest.raises(StateError, match=r'reference_frame \[nope\] not found'):
         w.add(sim, 'box::body', 'nope', (0, 0, 0), (1, 0, 0), (0, 0, 0), 0, -1)
+
+
+def test_joint_effort_turns_a_free_joint_for_its_duration(sim):
+    props = ms.get_physics_properties(sim)
+    ms.set_physics_properties(sim, ms.PhysicsProperties(props.time_step, 1000.0, (0, 0, 0)))
+    efforts = ms.JointEfforts()
+    sim.before_step.append(lambda now: efforts.apply(sim, now))
+    efforts.add(sim, 'hinge', 0.01, 0, 50_000_000)
+    for _ in range(50):
+        sim.step()
+    q, rate = ms.get_joint_properties(sim, 'hinge')
+    assert rate > 0.05 and q > 0
+    for _ in range(50):
+        sim.step()
+    assert efforts.jobs == []
+    assert ms.get_joint_properties(sim, 'hinge')[1] == pytest.approx(rate, rel=0.1)
+    with pytest.raises(StateError, match=r'ApplyJointEffort: joint \[nojoint\] not found'):
+        efforts.add(sim, 'nojoint', 1.0, 0, -1)
+
+
+def test_set_link_state_moves_a_root_link_and_refuses_a_jointed_one(sim):
+    ms.set_link_state(sim, 'two::base', State((2, 2, 0)), 'box::body')
+    assert close(ms.get_link_state(sim, 'two::base', '').position, (2, 2, 1))
+    with pytest.raises(StateError, match=r'SetLinkState: link \[two::arm\] is not the root'):
+        ms.set_link_state(sim, 'two::arm', State(), '')
+    with pytest.raises(StateError, match=r'SetLinkState: failed: reference_frame \[two\]'):
+        ms.set_link_state(sim, 'two::base', State(), 'two')
+    with pytest.raises(StateError, match=r'SetLinkState: link \[ghost\] does not exist'):
+        ms.set_link_state(sim, 'ghost', State(), '')

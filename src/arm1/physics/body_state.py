@@ -120,6 +120,51 @@ def apply_wrench(robot: Robot, link: str, force: Sequence[float], torque: Sequen
     p.applyExternalTorque(robot.body, i, list(torque), p.WORLD_FRAME, physicsClientId=cid)
 
 
+def apply_joint_effort(robot: Robot, joint: str, effort: float) -> None:
+    """A joint effort for the next step, on top of any motor or torque command: equal and
+    opposite torques (revolute) or forces (prismatic) along the axis on child and parent."""
+    cid, body = robot.client, robot.body
+    i = robot.joint_index[joint]
+    info = p.getJointInfo(body, i, physicsClientId=cid)
+    kind, axis, parent = info[2], info[13], info[16]
+    if kind not in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC):
+        return
+    orn = p.getLinkState(body, i, computeForwardKinematics=1, physicsClientId=cid)[5]
+    world_axis = p.rotateVector(orn, axis)
+    v = [effort * c for c in world_axis]
+    minus = [-c for c in v]
+    if kind == p.JOINT_REVOLUTE:
+        p.applyExternalTorque(body, i, v, p.WORLD_FRAME, physicsClientId=cid)
+        p.applyExternalTorque(body, parent, minus, p.WORLD_FRAME, physicsClientId=cid)
+    else:
+        p.applyExternalForce(
+            body, i, v, list(com_position_index(robot, i)), p.WORLD_FRAME, physicsClientId=cid
+        )
+        p.applyExternalForce(
+            body,
+            parent,
+            minus,
+            list(com_position_index(robot, parent)),
+            p.WORLD_FRAME,
+            physicsClientId=cid,
+        )
+
+
+def com_position_index(robot: Robot, i: int) -> Vec:
+    if i == -1:
+        pos = p.getBasePositionAndOrientation(robot.body, physicsClientId=robot.client)[0]
+    else:
+        pos = p.getLinkState(
+            robot.body, i, computeForwardKinematics=1, physicsClientId=robot.client
+        )[0]
+    return (pos[0], pos[1], pos[2])
+
+
+def effort_limit(robot: Robot, joint: str) -> float:
+    """The URDF's effort limit as pybullet keeps it; 0 when none was given."""
+    return p.getJointInfo(robot.body, robot.joint_index[joint], physicsClientId=robot.client)[10]
+
+
 def link_properties(robot: Robot, link: str) -> Tuple[float, Vec, Vec]:
     """Mass, centre of mass in the link frame, principal inertia diagonal."""
     info = p.getDynamicsInfo(robot.body, robot.link_index[link], physicsClientId=robot.client)

@@ -15,6 +15,7 @@ import rospy
 from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates
 from gazebo_msgs.srv import (
     ApplyBodyWrench,
+    ApplyJointEffort,
     BodyRequest,
     GetJointProperties,
     GetLinkProperties,
@@ -23,6 +24,8 @@ from gazebo_msgs.srv import (
     GetModelState,
     GetPhysicsProperties,
     GetWorldProperties,
+    JointRequest,
+    SetLinkState,
     SetModelState,
     SetPhysicsProperties,
 )
@@ -104,6 +107,7 @@ class GazeboStateApi:
         self.sim, self.calls, self.loop = sim, calls, loop
         self.on_update_rate = on_update_rate
         self.wrenches = ms.Wrenches()
+        self.efforts = ms.JointEfforts()
         self._seq: Dict[str, int] = {}  # get_model_state's header.seq, per model as upstream
         self._services = [
             rospy.Service('~get_model_state', GetModelState, self._get_model_state),
@@ -115,6 +119,9 @@ class GazeboStateApi:
             rospy.Service('~get_joint_properties', GetJointProperties, self._joint_properties),
             rospy.Service('~apply_body_wrench', ApplyBodyWrench, self._apply_body_wrench),
             rospy.Service('~clear_body_wrenches', BodyRequest, self._clear_body_wrenches),
+            rospy.Service('~set_link_state', SetLinkState, self._set_link_state),
+            rospy.Service('~apply_joint_effort', ApplyJointEffort, self._apply_joint_effort),
+            rospy.Service('~clear_joint_forces', JointRequest, self._clear_joint_forces),
             rospy.Service('~get_physics_properties', GetPhysicsProperties, self._get_physics),
             rospy.Service('~set_physics_properties', SetPhysicsProperties, self._set_physics),
         ]
@@ -143,6 +150,8 @@ class GazeboStateApi:
     def _before_step(self, now_ns: int) -> None:
         if self.wrenches.jobs:
             self.wrenches.apply(self.sim, now_ns)
+        if self.efforts.jobs:
+            self.efforts.apply(self.sim, now_ns)
         if self.model_states.get_num_connections():
             self._model_out.put(ms.model_states(self.sim))
         if self.link_states.get_num_connections():
@@ -185,6 +194,45 @@ class GazeboStateApi:
         ok, message = self._set(msg)  # upstream discards the result; we log a refusal
         if not ok:
             rospy.logwarn(message)
+
+    def _set_link(self, m: Any) -> Tuple[bool, str]:
+        try:
+            self.calls.call(
+                ms.set_link_state,
+                self.sim,
+                m.link_name,
+                state_from_msg(m.pose, m.twist),
+                m.reference_frame,
+            )
+        except StateError as exc:
+            return False, str(exc)
+        return True, 'SetLinkState: success'
+
+    def _set_link_state(self, req: Any) -> Tuple[bool, str]:
+        return self._set_link(req.link_state)
+
+    def _set_link_state_topic(self, msg: Any) -> None:
+        ok, message = self._set_link(msg)
+        if not ok:
+            rospy.logwarn(message)
+
+    def _apply_joint_effort(self, req: Any) -> Tuple[bool, str]:
+        try:
+            self.calls.call(
+                self.efforts.add,
+                self.sim,
+                req.joint_name,
+                req.effort,
+                req.start_time.to_nsec(),
+                req.duration.to_nsec(),
+            )
+        except StateError as exc:
+            return False, str(exc)
+        return True, 'ApplyJointEffort: effort set'
+
+    def _clear_joint_forces(self, req: Any) -> List[Any]:
+        self.calls.call(self.efforts.clear, req.joint_name)
+        return []
 
     def _get_link_state(self, req: Any) -> Any:
         res = GetLinkState._response_class()

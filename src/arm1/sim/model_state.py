@@ -190,6 +190,40 @@ def get_link_state(sim: Simulation, link: str, reference: str) -> State:
     return state if frame is None else relative(state, frame)
 
 
+def set_link_state(sim: Simulation, link: str, target: State, reference: str) -> None:
+    """As upstream for a model's root link; pybullet moves other links only through their
+    joints, so those are refused by name (upstream moves the one link alone)."""
+    found = find_link(sim, link)
+    if found is None:
+        raise StateError('SetLinkState: link [%s] does not exist' % link)
+    if not finite(target.position, target.orientation, target.linear, target.angular):
+        raise StateError("SetLinkState: link [%s]'s state is not all finite numbers" % link)
+    frame: Optional[State] = None
+    frame_link = find_link(sim, reference)
+    if frame_link is not None:
+        frame = _link_state(*frame_link)
+    elif reference not in WORLD_NAMES:
+        raise StateError('SetLinkState: failed: reference_frame [%s] is not a link' % reference)
+    model, name = found
+    if model.robot.link_index[name] != -1:
+        raise StateError(
+            'SetLinkState: link [%s] is not the root of its model: pybullet moves it only '
+            'through its joints (set the model state or the joint positions instead)' % link
+        )
+    world = State(target.position, normalized(target.orientation), target.linear, target.angular)
+    if frame is not None:
+        q = frame.orientation
+        world = State(
+            _add(frame.position, rotate(q, target.position)),
+            q_mul(q, world.orientation),
+            _sub(target.linear, frame.linear),
+            _sub(target.angular, frame.angular),
+        )
+    body_state.set_base_state(
+        model.robot, world.position, world.orientation, world.linear, world.angular
+    )
+
+
 def model_states(sim: Simulation) -> Tuple[List[str], List[State]]:
     """Every model's name and state, for /gazebo/model_states."""
     names = list(sim.models)
@@ -341,6 +375,61 @@ class Wrenches:
         self.jobs = keep
         for job in latest.values():
             body_state.apply_wrench(job.model.robot, job.link, job.force, job.torque)
+
+
+@dataclass
+class EffortJob:
+    model: Model
+    joint: str
+    effort: float
+    start_ns: int
+    duration_ns: int  # negative: until cleared
+
+
+@dataclass
+class JointEfforts:
+    """apply_joint_effort jobs: added to whatever the controllers command, each step between
+    start and start + duration; several on one joint add up, capped at its effort limit."""
+
+    jobs: List[EffortJob] = field(default_factory=list)
+
+    def add(
+        self, sim: Simulation, joint: str, effort: float, start_ns: int, duration_ns: int
+    ) -> None:
+        found = find_joint(sim, joint)
+        if found is None:
+            raise StateError('ApplyJointEffort: joint [%s] not found' % joint)
+        if not math.isfinite(effort):
+            raise StateError(
+                'ApplyJointEffort: effort %r for joint [%s] is not finite' % (effort, joint)
+            )
+        self.jobs.append(
+            EffortJob(found[0], found[1], effort, max(start_ns, sim.time_ns), duration_ns)
+        )
+
+    def clear(self, joint: str) -> None:
+        """clear_joint_forces: the bare joint name, in every model, as upstream."""
+        self.jobs = [j for j in self.jobs if j.joint != joint]
+
+    def apply(self, sim: Simulation, now_ns: int) -> None:
+        t = now_ns + sim.step_ns
+        keep: List[EffortJob] = []
+        totals: Dict[Tuple[int, str], Tuple[Model, float]] = {}
+        for job in self.jobs:
+            if sim.models.get(job.model.name) is not job.model:
+                continue  # its model was deleted
+            if job.duration_ns >= 0 and t > job.start_ns + job.duration_ns:
+                continue
+            keep.append(job)
+            if job.start_ns <= t:
+                key = (id(job.model), job.joint)
+                totals[key] = (job.model, totals.get(key, (job.model, 0.0))[1] + job.effort)
+        self.jobs = keep
+        for (_, joint), (model, effort) in totals.items():
+            limit = body_state.effort_limit(model.robot, joint)
+            if limit > 0:
+                effort = max(-limit, min(limit, effort))
+            body_state.apply_joint_effort(model.robot, joint, effort)
 
 
 # --- physics properties --------------------------------------------------------------------
