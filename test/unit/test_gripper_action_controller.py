@@ -3,9 +3,10 @@ goal_tolerance, stall detection (ABORTED, stalled), preemption, cancel and the t
 hardware_interface adapters."""
 
 import logging
+import os
 
 import pytest
-from conftest import FakeRos
+from conftest import REPO_ROOT, WORLD_FILE, FakeRos
 
 from arm1.control.controller import ControllerError
 from arm1.control.gripper_action_controller import (
@@ -18,6 +19,8 @@ from arm1.control.hardware_interface import (
     JointHandle,
 )
 from arm1.control.registry import CONTROLLER_TYPES
+from arm1.description.sdf_world import read_world
+from arm1.sim.simulation import Simulation
 
 NS = '/bot'
 DT_NS = 1000000  # 1 kHz
@@ -232,3 +235,65 @@ def test_stopping_cancels_the_active_goal():
     gh = r.goal(0.05)
     r.c.stop_request(r.t)
     assert gh.status == 'PREEMPTED' and r.joint.command == 0.0
+
+
+# ------------------------------------------------------------- in real pybullet physics
+def _closing_on_a_box(cls, interface, pid_gains=None):
+    """gripper_bot (its right finger a mimic) closing on a box: the goal handle and finger
+    positions after 3 s of sim time."""
+    with open(os.path.join(REPO_ROOT, 'test', 'config', 'gripper_bot.urdf')) as f:
+        urdf = f.read().replace(
+            'left_finger_joint"><hardwareInterface>hardware_interface/EffortJointInterface',
+            'left_finger_joint"><hardwareInterface>hardware_interface/' + interface,
+        )
+    with open(os.path.join(REPO_ROOT, 'test', 'config', 'gripper_box.urdf')) as f:
+        box = f.read()
+    sim = Simulation(read_world(WORLD_FILE))
+    try:
+        model = sim.spawn_urdf('gripper', urdf)
+        sim.spawn_urdf('box', box, position=(0, 0, 0.335))
+        if pid_gains:
+            model.hw.set_pid_gains({'left_finger_joint': pid_gains})
+        params = {
+            'joint': 'left_finger_joint',
+            'gains': {'left_finger_joint': {'p': 200.0, 'd': 5.0}},
+            'stall_timeout': 0.5,
+            'stall_velocity_threshold': 0.02,  # contact jitter: see the README
+        }
+        ros = FakeRos({'gripper_bot': {'g': params}})
+        c = cls()
+        c.init_request(model.hw, ros.node_handle('/gripper_bot'), ros.node_handle('/gripper_bot/g'))
+        c.start_request(sim.time_ns)
+        gh = ros.action_servers['/gripper_bot/g/gripper_cmd'].send_goal(
+            dict(command=dict(position=0.06, max_effort=2.0))
+        )
+        for _ in range(3000):
+            model.hw.read()
+            c.update(sim.time_ns, sim.step_ns)
+            model.hw.write()
+            sim.step()
+        idx = model.robot.indices(['left_finger_joint', 'right_finger_joint'])
+        return gh, [pos for pos, _ in model.robot.read(idx)]
+    finally:
+        sim.close()
+
+
+def test_effort_gripper_stalls_on_a_box_in_physics_and_the_mimic_finger_mirrors():
+    gh, (left, right) = _closing_on_a_box(GripperActionController, 'EffortJointInterface')
+    assert gh.status == 'ABORTED' and gh.result['stalled'] is True
+    assert left == pytest.approx(0.04, abs=0.003)  # the box's face
+    assert right == pytest.approx(-left, abs=0.002)
+
+
+def test_position_gripper_stalls_with_the_hardwares_pid_gains():
+    gh, (left, _) = _closing_on_a_box(
+        PositionGripperActionController, 'PositionJointInterface', {'p': 200.0, 'd': 5.0}
+    )
+    assert gh.status == 'ABORTED' and gh.result['stalled'] is True
+    assert left == pytest.approx(0.04, abs=0.003)
+
+
+def test_position_gripper_set_directly_passes_through_the_box_as_in_gazebo():
+    gh, (left, _) = _closing_on_a_box(PositionGripperActionController, 'PositionJointInterface')
+    assert gh.status == 'SUCCEEDED' and gh.result['reached_goal'] is True
+    assert left > 0.055
