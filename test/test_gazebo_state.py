@@ -143,6 +143,7 @@ class GazeboState(WorldTestCase):
         self.assertTrue(world.success)
         self.assertIn('arm1', world.model_names)
         self.assertIn('box', world.model_names)
+        self.assertEqual(world.model_names[0], 'ground_plane')  # the world file's come first
         self.assertGreater(world.sim_time, 0)
         model = proxy('get_model_properties', GetModelProperties)('arm1')
         self.assertTrue(model.success, model.status_message)

@@ -166,3 +166,24 @@ def test_set_link_state_moves_a_root_link_and_refuses_a_jointed_one(sim):
         ms.set_link_state(sim, 'two::base', State(), 'two')
     with pytest.raises(StateError, match=r'SetLinkState: link \[ghost\] does not exist'):
         ms.set_link_state(sim, 'ghost', State(), '')
+
+
+def test_world_file_scenery_is_listed_and_readable():
+    from arm1.description.sdf_world import StaticModel
+
+    config = WorldConfig()
+    config.models = [StaticModel('ground_plane', (0, 0, 0, 0, 0, math.pi / 2), [])]
+    sim = Simulation(config)
+    try:
+        sim.spawn_urdf('box', BOX, (0, 0, 1))
+        assert ms.model_names(sim) == ['ground_plane', 'box']
+        names, states = ms.model_states(sim)
+        assert names == ['ground_plane', 'box'] and close(states[0].linear, (0, 0, 0))
+        ground = ms.get_model_state(sim, 'ground_plane', '')
+        assert close(ground.orientation, ms.normalized((0, 0, 1, 1)))
+        assert ms.get_model_properties(sim, 'ground_plane').is_static
+        # The box seen from the (turned) ground: its x axis is the world's y.
+        ms.set_model_state(sim, 'box', State((1, 0, 0.5)), 'ground_plane')
+        assert close(ms.get_model_state(sim, 'box', '').position, (0, 1, 0.5))
+    finally:
+        sim.close()

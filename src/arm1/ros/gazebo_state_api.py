@@ -261,7 +261,7 @@ class GazeboStateApi:
         return res
 
     def _world_properties(self, req: Any) -> Any:
-        names, t = self.calls.call(lambda: (list(self.sim.models), self.sim.time_ns))
+        names, t = self.calls.call(lambda: (ms.model_names(self.sim), self.sim.time_ns))
         return GetWorldProperties._response_class(
             t * 1e-9, names, True, True, 'GetWorldProperties: got properties'
         )

@@ -111,6 +111,32 @@ def model_state(model: Model) -> State:
     return State(pos, orn, lin, ang)
 
 
+def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return (
+        sr * cp * cy - cr * sp * sy,
+        cr * sp * cy + sr * cp * sy,
+        cr * cp * sy - sr * sp * cy,
+        cr * cp * cy + sr * sp * sy,
+    )
+
+
+def scenery(sim: Simulation) -> Dict[str, State]:
+    """The world file's static models (ground_plane, ...): fixed poses, no twist."""
+    out: Dict[str, State] = {}
+    for m in sim.config.models:
+        x, y, z, roll, pitch, yaw = (float(v) for v in m.pose)
+        out[m.name] = State((x, y, z), quat_from_rpy(roll, pitch, yaw))
+    return out
+
+
+def model_names(sim: Simulation) -> List[str]:
+    """As Gazebo lists them: the world file's models, then the spawned ones, in order."""
+    return [m.name for m in sim.config.models] + list(sim.models)
+
+
 def find_link(sim: Simulation, name: str) -> Optional[Tuple[Model, str]]:
     """``model::link`` or a bare link name (the first model, in spawn order, that has it)."""
     if '::' in name:
@@ -133,6 +159,9 @@ def frame_state(sim: Simulation, name: str) -> Optional[State]:
     found = find_link(sim, name)
     if found is not None:
         return _link_state(*found)
+    static = scenery(sim).get(name)
+    if static is not None:
+        return static
     if name in WORLD_NAMES:
         return None
     raise KeyError(name)
@@ -140,7 +169,8 @@ def frame_state(sim: Simulation, name: str) -> Optional[State]:
 
 def get_model_state(sim: Simulation, name: str, reference: str) -> State:
     model = sim.models.get(name)
-    if model is None:
+    static = scenery(sim).get(name) if model is None else None
+    if model is None and static is None:
         raise StateError('GetModelState: model [%s] does not exist' % name)
     try:
         frame = frame_state(sim, reference)
@@ -149,7 +179,8 @@ def get_model_state(sim: Simulation, name: str, reference: str) -> State:
             'GetModelState: reference relative_entity_name [%s] not found, did you '
             'forget to scope the body by model name?' % reference
         )
-    state = model_state(model)
+    state = model_state(model) if model is not None else static
+    assert state is not None
     return state if frame is None else relative(state, frame)
 
 
@@ -225,9 +256,10 @@ def set_link_state(sim: Simulation, link: str, target: State, reference: str) ->
 
 
 def model_states(sim: Simulation) -> Tuple[List[str], List[State]]:
-    """Every model's name and state, for /gazebo/model_states."""
-    names = list(sim.models)
-    return names, [model_state(m) for m in sim.models.values()]
+    """Every model's name and state, for /gazebo/model_states (static scenery first)."""
+    static = scenery(sim)
+    names = list(static) + list(sim.models)
+    return names, list(static.values()) + [model_state(m) for m in sim.models.values()]
 
 
 def link_states(sim: Simulation) -> Tuple[List[str], List[State]]:
@@ -253,6 +285,8 @@ class ModelProperties:
 
 def get_model_properties(sim: Simulation, name: str) -> ModelProperties:
     model = sim.models.get(name)
+    if model is None and name in scenery(sim):
+        return ModelProperties([], [], True)  # pybullet keeps no links of scenery
     if model is None:
         raise StateError('GetModelProperties: model [%s] does not exist' % name)
     return ModelProperties(
