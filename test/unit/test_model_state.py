@@ -187,3 +187,23 @@ def test_world_file_scenery_is_listed_and_readable():
         assert close(ms.get_model_state(sim, 'box', '').position, (0, 1, 0.5))
     finally:
         sim.close()
+
+
+def test_set_joint_properties_stops_hold_a_pushed_joint(sim):
+    props = ms.get_physics_properties(sim)
+    ms.set_physics_properties(sim, ms.PhysicsProperties(props.time_step, 1000.0, (0, 0, 0)))
+    sim.models['two'].robot.set_joint_positions({'hinge': 0.0})
+    ms.set_model_state(sim, 'two', State((1, 0, 0)), '')
+    ms.set_joint_properties(sim, 'two::hinge', [0.0], [-0.2], [0.2])
+    efforts = ms.JointEfforts()
+    sim.before_step.append(lambda now: efforts.apply(sim, now))
+    efforts.add(sim, 'hinge', 0.05, 0, -1)
+    for _ in range(1000):
+        sim.step()
+    q = ms.get_joint_properties(sim, 'hinge')[0]
+    assert 0.1 < q < 0.25  # pushed up to the new stop, not the URDF's 1 rad
+    ms.set_joint_properties(sim, 'hinge', [], [], [])  # empty arrays change nothing
+    with pytest.raises(StateError, match=r'SetJointProperties: joint \[nojoint\] not found'):
+        ms.set_joint_properties(sim, 'nojoint', [], [], [])
+    with pytest.raises(StateError, match=r'joint \[hinge\]: values must be finite'):
+        ms.set_joint_properties(sim, 'hinge', [math.nan], [], [])

@@ -6,7 +6,7 @@ mass. These functions convert at the boundary so callers only see Gazebo's view.
 
 from __future__ import annotations
 
-from typing import Dict, List, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import pybullet as p
 
@@ -163,6 +163,27 @@ def com_position_index(robot: Robot, i: int) -> Vec:
 def effort_limit(robot: Robot, joint: str) -> float:
     """The URDF's effort limit as pybullet keeps it; 0 when none was given."""
     return p.getJointInfo(robot.body, robot.joint_index[joint], physicsClientId=robot.client)[10]
+
+
+def set_joint_dynamics(
+    robot: Robot,
+    joint: str,
+    damping: Optional[float] = None,
+    lower: Optional[float] = None,
+    upper: Optional[float] = None,
+) -> None:
+    """What of ODE's joint properties pybullet has: viscous damping and the stops."""
+    kwargs: Dict[str, float] = {}
+    if damping is not None:
+        kwargs['jointDamping'] = damping
+    if lower is not None or upper is not None:
+        info = p.getJointInfo(robot.body, robot.joint_index[joint], physicsClientId=robot.client)
+        kwargs['jointLowerLimit'] = info[8] if lower is None else lower
+        kwargs['jointUpperLimit'] = info[9] if upper is None else upper
+    if kwargs:
+        p.changeDynamics(
+            robot.body, robot.joint_index[joint], physicsClientId=robot.client, **kwargs
+        )
 
 
 def link_properties(robot: Robot, link: str) -> Tuple[float, Vec, Vec]:

@@ -25,6 +25,7 @@ from gazebo_msgs.srv import (
     GetPhysicsProperties,
     GetWorldProperties,
     JointRequest,
+    SetJointProperties,
     SetLinkState,
     SetModelState,
     SetPhysicsProperties,
@@ -122,6 +123,7 @@ class GazeboStateApi:
             rospy.Service('~set_link_state', SetLinkState, self._set_link_state),
             rospy.Service('~apply_joint_effort', ApplyJointEffort, self._apply_joint_effort),
             rospy.Service('~clear_joint_forces', JointRequest, self._clear_joint_forces),
+            rospy.Service('~set_joint_properties', SetJointProperties, self._set_joint_props),
             rospy.Service('~get_physics_properties', GetPhysicsProperties, self._get_physics),
             rospy.Service('~set_physics_properties', SetPhysicsProperties, self._set_physics),
         ]
@@ -290,6 +292,27 @@ class GazeboStateApi:
         res.position, res.rate = [position], [rate]
         res.success, res.status_message = True, 'GetJointProperties: got properties'
         return res
+
+    def _set_joint_props(self, req: Any) -> Tuple[bool, str]:
+        c = req.ode_joint_config
+        try:
+            self.calls.call(
+                ms.set_joint_properties, self.sim, req.joint_name, c.damping, c.loStop, c.hiStop
+            )
+        except StateError as exc:
+            return False, str(exc)
+        ignored = [
+            f
+            for f in ('erp', 'cfm', 'stop_erp', 'stop_cfm', 'fudge_factor', 'fmax', 'vel')
+            if getattr(c, f)
+        ]
+        if ignored:
+            rospy.logwarn(
+                'SetJointProperties: %s of joint [%s] not applied (pybullet has no such setting)',
+                ', '.join(ignored),
+                req.joint_name,
+            )
+        return True, 'SetJointProperties: properties set'
 
     def _apply_body_wrench(self, req: Any) -> Tuple[bool, str]:
         w = req.wrench

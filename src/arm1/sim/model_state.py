@@ -314,6 +314,28 @@ def get_joint_properties(sim: Simulation, name: str) -> Tuple[float, float]:
     return body_state.joint_state(model.robot, joint)
 
 
+def set_joint_properties(
+    sim: Simulation,
+    name: str,
+    damping: Sequence[float],
+    lo_stop: Sequence[float],
+    hi_stop: Sequence[float],
+) -> None:
+    """Axis 0 of damping and the stops (empty arrays change nothing, as upstream); pybullet
+    has no per-joint erp, cfm, fudge factor or ODE motor, so those fields are not applied."""
+    found = find_joint(sim, name)
+    if found is None:
+        raise StateError('SetJointProperties: joint [%s] not found' % name)
+    values = [list(a[:1]) for a in (damping, lo_stop, hi_stop)]
+    if not finite(*values):
+        raise StateError('SetJointProperties: joint [%s]: values must be finite' % name)
+    d, lo, hi = (v[0] if v else None for v in values)
+    if d is not None and d < 0:
+        raise StateError('SetJointProperties: joint [%s]: damping %g is negative' % (name, d))
+    model, joint = found
+    body_state.set_joint_dynamics(model.robot, joint, d, lo, hi)
+
+
 def get_link_properties(sim: Simulation, name: str) -> Tuple[float, Vec, Vec]:
     """Mass, centre of mass in the link frame, inertia diagonal."""
     found = find_link(sim, name)
