@@ -69,11 +69,13 @@ class Trajectory(WorldTestCase):
         self.assertEqual(result.error_string, '')
         final = self.now()
         for j, target in zip(JOINTS, end):
-            self.assertLess(abs(final[j] - target), GOAL_TOL, '%s at %.3f, not %.3f'
-                            % (j, final[j], target))
+            self.assertLess(
+                abs(final[j] - target), GOAL_TOL, '%s at %.3f, not %.3f' % (j, final[j], target)
+            )
         # the arm passed near the middle point on its way
-        passes = [max(abs(positions(m)[j] - p) for j, p in zip(JOINTS, mid))
-                  for m in self.states.since(0)]
+        passes = [
+            max(abs(positions(m)[j] - p) for j, p in zip(JOINTS, mid)) for m in self.states.since(0)
+        ]
         self.assertLess(min(passes), 0.15, 'never within 0.15 rad of the middle point')
 
     def test_02_unknown_joint_returns_invalid_joints(self):
@@ -102,8 +104,11 @@ class Trajectory(WorldTestCase):
         sim_wait(2.0)
         later = self.now()
         for j in JOINTS:
-            self.assertLess(abs(later[j] - held[j]), 0.05, '%s drifted from %.3f to %.3f'
-                            % (j, held[j], later[j]))
+            self.assertLess(
+                abs(later[j] - held[j]),
+                0.05,
+                '%s drifted from %.3f to %.3f' % (j, held[j], later[j]),
+            )
 
     def test_05_state_topic_and_query_state(self):
         rec = Recorder('/arm1/arm_controller/state', JointTrajectoryControllerState)
@@ -134,8 +139,10 @@ class Trajectory(WorldTestCase):
         call('/gazebo/pause_physics', Empty)()
         try:
             self.client.send_goal(make_goal([(1.5, [0.4, 1.0, 0.0, 0.0])]))
-            self.assertTrue(wait_for(lambda: self.client.get_state() == GoalStatus.ACTIVE, 10),
-                            'goal not accepted while paused')
+            self.assertTrue(
+                wait_for(lambda: self.client.get_state() == GoalStatus.ACTIVE, 10),
+                'goal not accepted while paused',
+            )
             time.sleep(1.0)  # wall time: sim time stands still
             self.assertEqual(self.client.get_state(), GoalStatus.ACTIVE)
             self.assertLess(abs(self.now()['joint1']), 0.05, 'the arm moved while paused')
@@ -146,17 +153,25 @@ class Trajectory(WorldTestCase):
         self.assertLess(abs(self.now()['joint1'] - 0.4), GOAL_TOL)
 
     def test_08_command_topic_moves_the_arm(self):
-        pub = rospy.Publisher('/arm1/arm_controller/command', JointTrajectory, queue_size=1,
-                              latch=True)
+        pub = rospy.Publisher(
+            '/arm1/arm_controller/command', JointTrajectory, queue_size=1, latch=True
+        )
         msg = make_goal([(1.5, [-0.3, 0.9, 0.2, 0.1])]).trajectory
         pub.publish(msg)
-        self.assertTrue(wait_for(lambda: abs(self.now()['joint1'] + 0.3) < GOAL_TOL, 30),
-                        'joint1 at %.3f, not -0.3' % self.now()['joint1'])
+        self.assertTrue(
+            wait_for(lambda: abs(self.now()['joint1'] + 0.3) < GOAL_TOL, 30),
+            'joint1 at %.3f, not -0.3' % self.now()['joint1'],
+        )
         pub.unregister()
 
     def test_09_trajectory_demo_prints_a_successful_result(self):
-        out = subprocess.run(['rosrun', 'arm1', 'trajectory_demo'], timeout=120,
-                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        out = subprocess.run(
+            ['rosrun', 'arm1', 'trajectory_demo'],
+            timeout=120,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         self.assertEqual(out.returncode, 0, out.stdout)
         self.assertIn('SUCCEEDED', out.stdout)
         self.assertIn('SUCCESSFUL', out.stdout)

@@ -5,6 +5,7 @@ Nothing here imports rospy: controllers and the controller manager talk to a
 ``FakeNodeHandle``s, which implement the NodeHandle Protocol of
 ``arm1/control/interfaces.py``.
 """
+
 from __future__ import annotations
 
 import os
@@ -116,8 +117,9 @@ class FakeRobot:
     def apply_efforts(self, indices: Sequence[int], efforts: Sequence[float]) -> None:
         self.applied.append((list(indices), list(efforts)))
 
-    def set_velocity_motors(self, indices: Sequence[int], velocities: Sequence[float],
-                            max_forces: Sequence[float]) -> None:
+    def set_velocity_motors(
+        self, indices: Sequence[int], velocities: Sequence[float], max_forces: Sequence[float]
+    ) -> None:
         self.motors.append((list(indices), list(velocities), list(max_forces)))
 
     def set_positions(self, indices: Sequence[int], positions: Sequence[float]) -> None:
@@ -128,8 +130,11 @@ class FakeRobot:
 
 
 # --------------------------------------------------------------------------- URDF snippets
-def transmission(joint: str, interface: str = 'hardware_interface/EffortJointInterface',
-                 name: Optional[str] = None) -> str:
+def transmission(
+    joint: str,
+    interface: str = 'hardware_interface/EffortJointInterface',
+    name: Optional[str] = None,
+) -> str:
     return """
   <transmission name="%s">
     <type>transmission_interface/SimpleTransmission</type>
@@ -150,10 +155,9 @@ def box_link(name: str, size: str = '0.1 0.1 0.1', mass: float = 0.5, xyz: str =
   </link>""" % (name, xyz, mass, ixx, iyy, izz, xyz, size, xyz, size)
 
 
-def cylinder_link(name: str, radius: float = 0.05, length: float = 0.02,
-                  mass: float = 0.5) -> str:
-    izz = 0.5 * mass * radius ** 2
-    ixx = mass * (3 * radius ** 2 + length ** 2) / 12.0
+def cylinder_link(name: str, radius: float = 0.05, length: float = 0.02, mass: float = 0.5) -> str:
+    izz = 0.5 * mass * radius**2
+    ixx = mass * (3 * radius**2 + length**2) / 12.0
     return """
   <link name="%s">
     <inertial><mass value="%g"/>
@@ -165,12 +169,15 @@ def cylinder_link(name: str, radius: float = 0.05, length: float = 0.02,
 
 def control_plugin(namespace: Optional[str]) -> str:
     inner = '<robotNamespace>%s</robotNamespace>' % namespace if namespace is not None else ''
-    return """
+    return (
+        """
   <gazebo>
     <plugin name="gazebo_ros_control" filename="libgazebo_ros_control.so">%s
       <robotSimType>gazebo_ros_control/DefaultRobotHWSim</robotSimType>
     </plugin>
-  </gazebo>""" % inner
+  </gazebo>"""
+        % inner
+    )
 
 
 # A robot with one joint of each actuated kind, geometry made of primitives only.
@@ -178,12 +185,14 @@ def control_plugin(namespace: Optional[str]) -> str:
 #                      -prismatic(x)-  slider  [-0.1, 0.2] m
 #                      -revolute(z)-   flap    [-3, 3] rad (limits almost the full circle)
 #                      -revolute(z)-   passive (PositionJointInterface: not simulated)
-MIXED_URDF = ('<?xml version="1.0"?>\n<robot name="mixed">\n  <link name="world"/>'
-              + box_link('base', '0.2 0.2 0.05', 2.0)
-              + cylinder_link('wheel')
-              + box_link('slider', '0.05 0.05 0.05', 0.5)
-              + box_link('flap', '0.1 0.02 0.02', 0.2, xyz='0.05 0 0')
-              + box_link('passive_link', '0.02 0.02 0.02', 0.05) + """
+MIXED_URDF = (
+    '<?xml version="1.0"?>\n<robot name="mixed">\n  <link name="world"/>'
+    + box_link('base', '0.2 0.2 0.05', 2.0)
+    + cylinder_link('wheel')
+    + box_link('slider', '0.05 0.05 0.05', 0.5)
+    + box_link('flap', '0.1 0.02 0.02', 0.2, xyz='0.05 0 0')
+    + box_link('passive_link', '0.02 0.02 0.02', 0.05)
+    + """
   <joint name="fixed_base_joint" type="fixed">
     <parent link="world"/><child link="base"/><origin xyz="0 0 0.5"/>
   </joint>
@@ -203,11 +212,13 @@ MIXED_URDF = ('<?xml version="1.0"?>\n<robot name="mixed">\n  <link name="world"
     <parent link="base"/><child link="passive_link"/><origin xyz="0.2 0 0"/>
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>
   </joint>"""
-              + transmission('wheel_joint', 'EffortJointInterface')
-              + transmission('slider_joint')
-              + transmission('flap_joint')
-              + transmission('passive_joint', 'hardware_interface/PositionJointInterface')
-              + control_plugin('/mixed_ns') + '\n</robot>\n')
+    + transmission('wheel_joint', 'EffortJointInterface')
+    + transmission('slider_joint')
+    + transmission('flap_joint')
+    + transmission('passive_joint', 'hardware_interface/PositionJointInterface')
+    + control_plugin('/mixed_ns')
+    + '\n</robot>\n'
+)
 
 MIXED_GAINS = {
     'wheel_joint': {'p': 2.0, 'd': 0.1},
@@ -220,19 +231,37 @@ def mixed_params() -> Params:
     ns = {'joint_state_controller': {'type': JSC, 'publish_rate': 100}}
     for joint, gains in MIXED_GAINS.items():
         ns[joint.replace('_joint', '') + '_controller'] = {
-            'type': JPC, 'joint': joint, 'pid': dict(gains)}
+            'type': JPC,
+            'joint': joint,
+            'pid': dict(gains),
+        }
     return {'mixed_ns': ns}
 
 
 # --------------------------------------------------------------------------- helpers
-def pump_switch(cm: ControllerManager, start: Sequence[str], stop: Sequence[str] = (),
-                strictness: int = 2, timeout: float = 0.0, time_ns: int = 0,
-                period_ns: int = 1000000, deadline: float = 2.0) -> Tuple[bool, int]:
+def pump_switch(
+    cm: ControllerManager,
+    start: Sequence[str],
+    stop: Sequence[str] = (),
+    strictness: int = 2,
+    timeout: float = 0.0,
+    time_ns: int = 0,
+    period_ns: int = 1000000,
+    deadline: float = 2.0,
+) -> Tuple[bool, int]:
     """``cm.switch_controller`` from a thread, as a ROS service calls it, while this thread
     keeps calling ``cm.update`` (the simulation loop). Returns what the call returned and
     how many updates ran before it did."""
-    return switch_while_updating(cm, start, stop, lambda: cm.update(time_ns, period_ns),
-                                 strictness, timeout, deadline, poll=0.002)
+    return switch_while_updating(
+        cm,
+        start,
+        stop,
+        lambda: cm.update(time_ns, period_ns),
+        strictness,
+        timeout,
+        deadline,
+        poll=0.002,
+    )
 
 
 # --------------------------------------------------------------------------- fixtures
@@ -246,6 +275,7 @@ def arm1_urdf() -> str:
     """The arm1 description expanded by PyPI's xacro with ``$(find arm1)`` = this repo."""
     import xacro
     import xacro.substitution_args as sa
+
     saved = sa._eval_find, sa._eval_dict.get('find')
     sa._eval_find = lambda pkg: REPO_ROOT
     sa._eval_dict['find'] = sa._eval_find
@@ -260,6 +290,7 @@ def arm1_urdf() -> str:
 def controllers_params() -> Params:
     """config/controllers.yaml as the parameter server would hold it."""
     import yaml
+
     with open(CONTROLLERS_YAML) as f:
         return yaml.safe_load(f)
 
@@ -270,4 +301,5 @@ def find_package() -> Callable[[str], str]:
         if pkg == 'arm1':
             return REPO_ROOT
         raise LookupError(pkg)
+
     return find

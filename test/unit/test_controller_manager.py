@@ -1,35 +1,44 @@
 """control/controller_manager.py: load, unload, switch (with a service thread), list, update."""
+
 import threading
 import time
 
 import pytest
+from conftest import JPC, JSC, MIXED_URDF, FakeRobot, FakeRos, pump_switch
 
 from arm1.control.controller import Controller
-from arm1.control.controller_manager import (BEST_EFFORT, STRICT, ControllerManager,
-                                             ControllerManagerError)
+from arm1.control.controller_manager import (
+    BEST_EFFORT,
+    STRICT,
+    ControllerManager,
+    ControllerManagerError,
+)
 from arm1.control.joint_position_controller import JointPositionController
 from arm1.control.registry import CONTROLLER_TYPES, by_type_name
 from arm1.control.switching import SwitchRequest, SwitchTimeout, switch_while_updating
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.robot_hw_sim import DefaultRobotHWSim
-from conftest import JPC, JSC, MIXED_URDF, FakeRobot, FakeRos, pump_switch
 
 NS = '/mixed_ns'
 PERIOD_NS = 1000000  # a 1 ms physics step
-PARAMS = {'mixed_ns': {
-    'joint_state_controller': {'type': JSC, 'publish_rate': 50},
-    'wheel_controller': {'type': JPC, 'joint': 'wheel_joint', 'pid': {'p': 1.0}},
-    'slider_controller': {'type': JPC, 'joint': 'slider_joint', 'pid': {'p': 1.0}},
-    'flap_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 1.0}},
-    'flap_other_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 5.0}},
-    'no_type_controller': {'joint': 'flap_joint', 'pid': {'p': 1.0}},
-    'bad_type_controller': {'type': 'velocity_controllers/JointPositionController',
-                            'joint': 'flap_joint'},
-    'bad_joint_controller': {'type': JPC, 'joint': 'elbow_joint', 'pid': {'p': 1.0}},
-    'passive_controller': {'type': JPC, 'joint': 'passive_joint', 'pid': {'p': 1.0}},
-    'no_p_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'i': 1.0, 'd': 0.1}},
-    'no_rate_controller': {'type': JSC},
-}}
+PARAMS = {
+    'mixed_ns': {
+        'joint_state_controller': {'type': JSC, 'publish_rate': 50},
+        'wheel_controller': {'type': JPC, 'joint': 'wheel_joint', 'pid': {'p': 1.0}},
+        'slider_controller': {'type': JPC, 'joint': 'slider_joint', 'pid': {'p': 1.0}},
+        'flap_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 1.0}},
+        'flap_other_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 5.0}},
+        'no_type_controller': {'joint': 'flap_joint', 'pid': {'p': 1.0}},
+        'bad_type_controller': {
+            'type': 'velocity_controllers/JointPositionController',
+            'joint': 'flap_joint',
+        },
+        'bad_joint_controller': {'type': JPC, 'joint': 'elbow_joint', 'pid': {'p': 1.0}},
+        'passive_controller': {'type': JPC, 'joint': 'passive_joint', 'pid': {'p': 1.0}},
+        'no_p_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'i': 1.0, 'd': 0.1}},
+        'no_rate_controller': {'type': JSC},
+    }
+}
 
 
 @pytest.fixture
@@ -72,8 +81,12 @@ def test_load_lists_name_type_state_and_claimed_resources(rig):
     cm.load_controller('flap_controller')
     cm.load_controller('joint_state_controller')
     assert cm.list_controllers() == [
-        ('flap_controller', JPC, 'initialized',
-         [('hardware_interface/EffortJointInterface', ['flap_joint'])]),
+        (
+            'flap_controller',
+            JPC,
+            'initialized',
+            [('hardware_interface/EffortJointInterface', ['flap_joint'])],
+        ),
         ('joint_state_controller', JSC, 'initialized', []),
     ]
 
@@ -102,8 +115,10 @@ def test_unknown_type_message_names_the_type(rig):
     assert 'bad_type_controller' in str(exc.value)
 
 
-@pytest.mark.parametrize('name, joint', [('bad_joint_controller', 'elbow_joint'),
-                                         ('passive_controller', 'passive_joint')])
+@pytest.mark.parametrize(
+    'name, joint',
+    [('bad_joint_controller', 'elbow_joint'), ('passive_controller', 'passive_joint')],
+)
 def test_unknown_joint_message_names_joint_and_controller(rig, name, joint):
     cm, _, _, ros = rig
     with pytest.raises(ControllerManagerError) as exc:
@@ -132,21 +147,37 @@ def test_missing_publish_rate_names_the_parameter(rig):
 
 def test_failures_do_not_stop_the_others_from_loading(rig):
     cm, _, _, _ = rig
-    names = ['joint_state_controller', 'no_type_controller', 'wheel_controller',
-             'bad_joint_controller', 'no_p_controller', 'slider_controller',
-             'bad_type_controller', 'flap_controller']
+    names = [
+        'joint_state_controller',
+        'no_type_controller',
+        'wheel_controller',
+        'bad_joint_controller',
+        'no_p_controller',
+        'slider_controller',
+        'bad_type_controller',
+        'flap_controller',
+    ]
     failed = []
     for n in names:
         try:
             cm.load_controller(n)
         except ControllerManagerError:
             failed.append(n)
-    assert failed == ['no_type_controller', 'bad_joint_controller', 'no_p_controller',
-                      'bad_type_controller']
+    assert failed == [
+        'no_type_controller',
+        'bad_joint_controller',
+        'no_p_controller',
+        'bad_type_controller',
+    ]
     assert [n for n, _, _, _ in cm.list_controllers()] == [
-        'joint_state_controller', 'wheel_controller', 'slider_controller', 'flap_controller']
-    ok, _ = pump_switch(cm, ['joint_state_controller', 'wheel_controller', 'slider_controller',
-                             'flap_controller'])
+        'joint_state_controller',
+        'wheel_controller',
+        'slider_controller',
+        'flap_controller',
+    ]
+    ok, _ = pump_switch(
+        cm, ['joint_state_controller', 'wheel_controller', 'slider_controller', 'flap_controller']
+    )
     assert ok
     assert set(states(cm).values()) == {'running'}
 
@@ -260,8 +291,11 @@ def test_resource_conflict_is_refused(rig):
     assert states(cm)['flap_other_controller'] == 'initialized'
     # handing the joint over in one switch is fine
     assert pump_switch(cm, ['flap_other_controller'], ['flap_controller'])[0]
-    assert states(cm) == {'flap_controller': 'stopped', 'flap_other_controller': 'running',
-                          'joint_state_controller': 'running'}
+    assert states(cm) == {
+        'flap_controller': 'stopped',
+        'flap_other_controller': 'running',
+        'joint_state_controller': 'running',
+    }
 
 
 def test_running_controller_cannot_be_unloaded(rig):
@@ -293,7 +327,7 @@ def test_update_runs_only_running_controllers(rig):
     n_js = len(ros.messages(NS + '/joint_states'))
     ros.publish(NS + '/flap_controller/command', 0.5)
     ros.publish(NS + '/wheel_controller/command', 0.5)
-    cm.update(10 ** 9, PERIOD_NS)
+    cm.update(10**9, PERIOD_NS)
     assert hw.handles['flap_joint'].command == pytest.approx(0.5)
     assert hw.handles['wheel_joint'].command == 0.0
     assert len(ros.messages(NS + '/joint_states')) == n_js + 1
@@ -382,8 +416,10 @@ def test_concurrent_loads_of_one_name_load_it_once(rig):
 
 # ----------------------------------------------------------------------------- seams
 def test_every_registered_type_loads_under_its_type_name():
-    assert sorted(CONTROLLER_TYPES) == ControllerManager(None, FakeRos().node_handle,
-                                                         '/x').controller_types()
+    assert (
+        sorted(CONTROLLER_TYPES)
+        == ControllerManager(None, FakeRos().node_handle, '/x').controller_types()
+    )
     for type_name, cls in CONTROLLER_TYPES.items():
         assert issubclass(cls, Controller) and cls.type_name == type_name
 
@@ -391,6 +427,7 @@ def test_every_registered_type_loads_under_its_type_name():
 def test_two_classes_with_one_type_name_are_refused():
     class Other(JointPositionController):
         pass
+
     with pytest.raises(TypeError, match="Other: type_name '%s'" % JPC):
         by_type_name((JointPositionController, Other))
 
@@ -419,5 +456,6 @@ def test_switch_while_updating_passes_on_what_the_switch_raised():
     class Broken:
         def switch_controller(self, start, stop, strictness, timeout):
             raise ValueError('broken manager')
+
     with pytest.raises(ValueError, match='broken manager'):
         switch_while_updating(Broken(), ['c'], [], lambda: None)

@@ -1,22 +1,33 @@
-"""Effort saturation (joint_limits_interface as gazebo_ros_control uses it) and DefaultRobotHWSim."""
+"""Effort saturation (joint_limits_interface as gazebo_ros_control uses it) and
+DefaultRobotHWSim."""
+
 import math
 
 import pytest
+from conftest import MIXED_URDF, FakeRobot
 
 from arm1.control.controller import ControllerError
 from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE, enforce_effort_limits
 from arm1.description.joint_limits import JointLimits, canonical_interface
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.robot_hw_sim import DefaultRobotHWSim
-from conftest import MIXED_URDF, FakeRobot
 
 ARM1_LIMITS = JointLimits(lower=-1.57, upper=1.57, effort=1.0, velocity=0.5)
 
 
 # ----------------------------------------------------------------------------- saturation
-@pytest.mark.parametrize('command, expected', [
-    (0.3, 0.3), (-0.3, -0.3), (1.0, 1.0), (5.0, 1.0), (-5.0, -1.0), (1e9, 1.0), (-1e9, -1.0),
-])
+@pytest.mark.parametrize(
+    'command, expected',
+    [
+        (0.3, 0.3),
+        (-0.3, -0.3),
+        (1.0, 1.0),
+        (5.0, 1.0),
+        (-5.0, -1.0),
+        (1e9, 1.0),
+        (-1e9, -1.0),
+    ],
+)
 def test_effort_is_clamped_to_the_urdf_effort_limit(command, expected):
     assert enforce_effort_limits(command, 0.0, 0.0, ARM1_LIMITS) == expected
 
@@ -68,8 +79,12 @@ def test_continuous_joint_has_no_position_cut():
 
 def test_canonical_interface_accepts_names_with_and_without_prefix():
     assert canonical_interface('EffortJointInterface') == EFFORT_JOINT_INTERFACE
-    assert canonical_interface(' hardware_interface/EffortJointInterface\n') == EFFORT_JOINT_INTERFACE
-    assert canonical_interface('PositionJointInterface') == 'hardware_interface/PositionJointInterface'
+    assert (
+        canonical_interface(' hardware_interface/EffortJointInterface\n') == EFFORT_JOINT_INTERFACE
+    )
+    assert (
+        canonical_interface('PositionJointInterface') == 'hardware_interface/PositionJointInterface'
+    )
 
 
 # ----------------------------------------------------------------------------- DefaultRobotHWSim

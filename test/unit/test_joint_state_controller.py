@@ -1,11 +1,12 @@
 """joint_state_controller/JointStateController (control/joint_state_controller.py)."""
+
 import pytest
+from conftest import JSC, MIXED_URDF, FakeRobot, FakeRos
 
 from arm1.control.controller import ControllerError
 from arm1.control.joint_state_controller import JointStateController
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.robot_hw_sim import DefaultRobotHWSim
-from conftest import JSC, MIXED_URDF, FakeRobot, FakeRos
 
 STEP_NS = 1000000  # 1 ms
 
@@ -81,8 +82,9 @@ def test_joints_parameter_selects_subset_and_order():
 
 
 def test_extra_joints_are_appended():
-    c, _, _, ros = make({'publish_rate': 10,
-                         'extra_joints': [{'name': 'gripper', 'position': 0.25}]})
+    c, _, _, ros = make(
+        {'publish_rate': 10, 'extra_joints': [{'name': 'gripper', 'position': 0.25}]}
+    )
     run(c, 1)
     m = ros.messages('/mixed_ns/joint_states')[0]
     assert m['name'][-1] == 'gripper'

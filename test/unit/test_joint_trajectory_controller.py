@@ -1,6 +1,7 @@
 """effort_controllers/JointTrajectoryController (control/joint_trajectory_controller.py and
 control/trajectory.py) against joint_trajectory_controller's semantics, without ROS: goals
 go through the in-process action server of tuning/local_ros.py."""
+
 import math
 
 import pytest
@@ -46,11 +47,14 @@ class FakeHW:
 
 
 def params(**extra):
-    p = {'type': JTC, 'joints': ['j1', 'j2'],
-         'gains': {'j1': {'p': 100.0, 'd': 10.0}, 'j2': {'p': 50.0, 'd': 5.0}},
-         # Linear segments end at speed: a perfectly following joint needs one update to
-         # stop, and upstream's goal_time 0 would abort at once on stopped_velocity_tolerance.
-         'constraints': {'goal_time': 0.1}}
+    p = {
+        'type': JTC,
+        'joints': ['j1', 'j2'],
+        'gains': {'j1': {'p': 100.0, 'd': 10.0}, 'j2': {'p': 50.0, 'd': 5.0}},
+        # Linear segments end at speed: a perfectly following joint needs one update to
+        # stop, and upstream's goal_time 0 would abort at once on stopped_velocity_tolerance.
+        'constraints': {'goal_time': 0.1},
+    }
     p.update(extra)
     return p
 
@@ -91,9 +95,14 @@ class Rig:
         return sample(self.c.trajectory[i], self.c.uptime)[1]
 
     def goal(self, points, names=('j1', 'j2'), stamp=0, **goal):
-        traj = dict(stamp=stamp, joint_names=list(names), points=[
-            dict(positions=list(p), time_from_start=int(t * S), **kw)
-            for t, p, kw in ((pt[0], pt[1], pt[2] if len(pt) > 2 else {}) for pt in points)])
+        traj = dict(
+            stamp=stamp,
+            joint_names=list(names),
+            points=[
+                dict(positions=list(p), time_from_start=int(t * S), **kw)
+                for t, p, kw in ((pt[0], pt[1], pt[2] if len(pt) > 2 else {}) for pt in points)
+            ],
+        )
         return self.server.send_goal(dict(trajectory=traj, **goal))
 
 
@@ -158,8 +167,9 @@ def test_unknown_joint_in_joints_fails_the_load():
     hw = FakeHW({'j1': 'revolute'})
     ros = FakeRos({'arm': {'jtc': params()}})
     with pytest.raises(ControllerError, match='j2'):
-        JointTrajectoryController().init_request(hw, ros.node_handle(NS),
-                                                 ros.node_handle(NS + '/jtc'))
+        JointTrajectoryController().init_request(
+            hw, ros.node_handle(NS), ros.node_handle(NS + '/jtc')
+        )
 
 
 # --------------------------------------------------------------------------- goals
@@ -194,13 +204,16 @@ def test_unknown_joint_is_rejected_with_invalid_joints_naming_it(rig):
     assert rig.c.trajectory == before
 
 
-@pytest.mark.parametrize('points, culprit', [
-    ([(1.0, (0.2,))], 'Point 0 has 1 positions for 2 joints'),
-    ([(1.0, (0.2, float('nan')))], 'positions of joint j2 is nan'),
-    ([(1.0, (0.2, 0.1), dict(velocities=[0.0]))], 'Size mismatch'),
-    ([(1.0, (0.2, 0.1)), (1.0, (0.3, 0.1))], 'not strictly increasing'),
-    ([(0.0, (0.2, 0.1))], 'Dropping all 1 trajectory point(s)'),
-])
+@pytest.mark.parametrize(
+    'points, culprit',
+    [
+        ([(1.0, (0.2,))], 'Point 0 has 1 positions for 2 joints'),
+        ([(1.0, (0.2, float('nan')))], 'positions of joint j2 is nan'),
+        ([(1.0, (0.2, 0.1), dict(velocities=[0.0]))], 'Size mismatch'),
+        ([(1.0, (0.2, 0.1)), (1.0, (0.3, 0.1))], 'not strictly increasing'),
+        ([(0.0, (0.2, 0.1))], 'Dropping all 1 trajectory point(s)'),
+    ],
+)
 def test_bad_goal_is_rejected_with_invalid_goal_naming_the_culprit(rig, points, culprit):
     gh = rig.goal(points)
     assert gh.status == 'REJECTED'
@@ -260,8 +273,14 @@ def test_future_stamp_lets_the_old_trajectory_run_until_then(rig):
 
 def test_topic_command_preempts_the_goal(rig):
     gh = rig.goal([(1.0, (1.0, 0.0))])
-    rig.ros.publish(NS + '/jtc/command', dict(stamp=0, joint_names=['j2', 'j1'], points=[
-        dict(positions=[0.5, -0.5], time_from_start=S)]))
+    rig.ros.publish(
+        NS + '/jtc/command',
+        dict(
+            stamp=0,
+            joint_names=['j2', 'j1'],
+            points=[dict(positions=[0.5, -0.5], time_from_start=S)],
+        ),
+    )
     assert gh.status == 'PREEMPTED'
     rig.step(1100)
     assert rig.joint('j1').position == pytest.approx(-0.5)
@@ -329,7 +348,7 @@ def test_continuous_joint_takes_the_short_way_round(rig):
 def test_velocities_in_points_give_a_cubic_path(rig):
     rig.goal([(1.0, (1.0, 0.0), dict(velocities=[0.0, 0.0]))])
     rig.step(250)
-    assert rig.desired(0)[0] == pytest.approx(3 * 0.25 ** 2 - 2 * 0.25 ** 3, abs=1e-3)
+    assert rig.desired(0)[0] == pytest.approx(3 * 0.25**2 - 2 * 0.25**3, abs=1e-3)
 
 
 def test_effort_is_pid_on_position_error_with_d_on_velocity_error(rig):
@@ -392,10 +411,14 @@ def load(cls, interface, **extra):
 
 
 def test_variants_registered_under_upstreams_type_names():
-    assert CONTROLLER_TYPES['position_controllers/JointTrajectoryController'] \
+    assert (
+        CONTROLLER_TYPES['position_controllers/JointTrajectoryController']
         is PositionJointTrajectoryController
-    assert CONTROLLER_TYPES['velocity_controllers/JointTrajectoryController'] \
+    )
+    assert (
+        CONTROLLER_TYPES['velocity_controllers/JointTrajectoryController']
         is VelocityJointTrajectoryController
+    )
 
 
 def test_effort_variant_refuses_position_joints():
@@ -408,8 +431,15 @@ def test_position_variant_commands_the_desired_position_without_gains():
     hw.handles['j1'].position = 0.3
     c.start_request(0)
     assert hw.handles['j1'].command == 0.3  # holds where it is
-    gh = ros.action_servers[NS + '/jtc/follow_joint_trajectory'].send_goal(dict(trajectory=dict(
-        stamp=0, joint_names=['j1', 'j2'], points=[dict(positions=[1.3, 0.0], time_from_start=S)])))
+    gh = ros.action_servers[NS + '/jtc/follow_joint_trajectory'].send_goal(
+        dict(
+            trajectory=dict(
+                stamp=0,
+                joint_names=['j1', 'j2'],
+                points=[dict(positions=[1.3, 0.0], time_from_start=S)],
+            )
+        )
+    )
     assert gh.status == 'ACTIVE'
     for k in range(1, 501):
         c.update(k * DT_NS, DT_NS)
@@ -417,11 +447,18 @@ def test_position_variant_commands_the_desired_position_without_gains():
 
 
 def test_velocity_variant_commands_ff_plus_pid():
-    c, hw, ros = load(VelocityJointTrajectoryController, VELOCITY_JOINT_INTERFACE,
-                      velocity_ff={'j1': 1.0})
+    c, hw, ros = load(
+        VelocityJointTrajectoryController, VELOCITY_JOINT_INTERFACE, velocity_ff={'j1': 1.0}
+    )
     c.start_request(0)
-    ros.publish(NS + '/jtc/command', dict(stamp=0, joint_names=['j1', 'j2'], points=[
-        dict(positions=[1.0, 0.0], time_from_start=S)]))
+    ros.publish(
+        NS + '/jtc/command',
+        dict(
+            stamp=0,
+            joint_names=['j1', 'j2'],
+            points=[dict(positions=[1.0, 0.0], time_from_start=S)],
+        ),
+    )
     c.update(DT_NS, DT_NS)
     _, (p, v, _) = sample(c.trajectory[0], c.uptime)
     assert hw.handles['j1'].command == pytest.approx(1.0 * v + 100.0 * p + 10.0 * v)

@@ -1,20 +1,28 @@
 """simulation.py with real pybullet (headless DIRECT): arm1 and a robot with every joint kind,
 driven through the ControllerManager with fake node handles, as the ROS layer would."""
+
 import copy
 import math
 
 import pytest
+from conftest import (
+    JPC,
+    MIXED_URDF,
+    WORLD_FILE,
+    FakeRos,
+    box_link,
+    control_plugin,
+    mixed_params,
+    transmission,
+)
 
 from arm1.control.controller_manager import STRICT, ControllerManager
 from arm1.control.switching import switch_while_updating
 from arm1.description.sdf_world import WorldConfig, read_world
 from arm1.sim.simulation import Simulation, SpawnError
-from conftest import (JPC, MIXED_URDF, WORLD_FILE, FakeRos, box_link, control_plugin,
-                      mixed_params, transmission)
 
 ARM1_JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
-ARM1_CONTROLLERS = ['joint_state_controller'] + ['%s_position_controller' % j
-                                                 for j in ARM1_JOINTS]
+ARM1_CONTROLLERS = ['joint_state_controller'] + ['%s_position_controller' % j for j in ARM1_JOINTS]
 SETTLE = 0.02  # rad
 
 
@@ -65,9 +73,13 @@ class Rig:
 
 
 def spawn(sim, ros, name, xml, find_package=None, **kw):
-    return sim.spawn_urdf(name, xml, find_package=find_package,
-                          controller_manager_factory=lambda hw, ns: ControllerManager(
-                              hw, ros.node_handle, ns), **kw)
+    return sim.spawn_urdf(
+        name,
+        xml,
+        find_package=find_package,
+        controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+        **kw,
+    )
 
 
 @pytest.fixture
@@ -105,7 +117,7 @@ def test_arm1_spawns_fixed_with_its_controller_manager(sim, arm1_urdf, find_pack
     assert sim.models == {'arm1': model}
     base_before = model.robot.link_pose('base_link')[0]
     run(sim, 0.5)
-    assert sim.time_ns == 500 * 10 ** 6
+    assert sim.time_ns == 500 * 10**6
     # pinned by the `world` joint: the base does not fall
     assert model.robot.link_pose('base_link')[0] == pytest.approx(base_before, abs=1e-6)
     # with no controller running nothing holds the arm: the elbow falls onto its lower
@@ -139,7 +151,7 @@ def test_joint_states_at_50_hz_in_sim_time(arm1):
     assert len(msgs) == pytest.approx(100, abs=1)
     assert all(m['name'] == ARM1_JOINTS for m in msgs)
     gaps = {b['stamp'] - a['stamp'] for a, b in zip(msgs, msgs[1:])}
-    assert gaps == {20 * 10 ** 6}
+    assert gaps == {20 * 10**6}
     assert msgs[-1]['stamp'] <= arm1.sim.time_ns
 
 
@@ -162,9 +174,17 @@ def test_a_step_settles_within_tolerance(arm1):
 SAFE_POSE = {'joint1': 0.0, 'joint2': 1.2, 'joint3': 0.0, 'joint4': 0.0}  # upright, clear
 
 
-@pytest.mark.parametrize('joint, command, limit', [
-    ('joint1', 5.0, 1.57), ('joint1', -5.0, -1.57), ('joint2', 9.0, 1.57),
-    ('joint3', -9.0, -1.0), ('joint4', 9.0, 1.57), ('joint4', -9.0, -0.8)])
+@pytest.mark.parametrize(
+    'joint, command, limit',
+    [
+        ('joint1', 5.0, 1.57),
+        ('joint1', -5.0, -1.57),
+        ('joint2', 9.0, 1.57),
+        ('joint3', -9.0, -1.0),
+        ('joint4', 9.0, 1.57),
+        ('joint4', -9.0, -0.8),
+    ],
+)
 def test_out_of_range_commands_end_at_the_urdf_limits(arm1, joint, command, limit):
     # From the upright pose, one joint at a time, so that no link meets the ground or
     # rests against a limit of another joint (arm1's 15 g links at 1 N·m are lively).
@@ -238,7 +258,7 @@ def test_reset_simulation_brings_time_and_joints_to_zero(arm1):
     for pos, vel in arm1.model.robot.read(names):
         assert (pos, vel) == (0.0, 0.0)
     arm1.sim.step()
-    assert arm1.sim.time_ns == 10 ** 6
+    assert arm1.sim.time_ns == 10**6
 
 
 def test_reset_world_keeps_time(arm1):
@@ -319,12 +339,18 @@ def test_a_position_interface_joint_without_a_controller_is_held_at_its_command_
 
 # ----------------------------------------------------------------------------- spawn rules
 def simple_robot(plugin_ns, extra=''):
-    return ('<robot name="simple"><link name="world"/>' + box_link('base') + box_link('arm')
-            + """<joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+    return (
+        '<robot name="simple"><link name="world"/>'
+        + box_link('base')
+        + box_link('arm')
+        + """<joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
             <joint name="hinge" type="revolute"><parent link="base"/><child link="arm"/>
               <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>"""
-            + transmission('hinge') + extra
-            + (control_plugin(plugin_ns) if plugin_ns != 'none' else '') + '</robot>')
+        + transmission('hinge')
+        + extra
+        + (control_plugin(plugin_ns) if plugin_ns != 'none' else '')
+        + '</robot>'
+    )
 
 
 def test_namespace_falls_back_to_spawn_argument_then_model_name(sim):
@@ -347,8 +373,10 @@ def test_spawn_refuses_a_transmission_for_an_unknown_joint(sim):
 
 
 def test_spawn_refuses_a_missing_mesh_naming_the_link(sim, find_package):
-    xml = ('<robot name="m"><link name="shell"><visual><geometry>'
-           '<mesh filename="package://arm1/meshes/nothing.STL"/></geometry></visual></link></robot>')
+    xml = (
+        '<robot name="m"><link name="shell"><visual><geometry>'
+        '<mesh filename="package://arm1/meshes/nothing.STL"/></geometry></visual></link></robot>'
+    )
     with pytest.raises(SpawnError) as exc:
         spawn(sim, FakeRos(), 'm', xml, find_package)
     assert "'shell'" in str(exc.value) and 'nothing.STL' in str(exc.value)
@@ -380,7 +408,7 @@ def test_step_period_comes_from_the_world():
         assert s.period == pytest.approx(0.004)
         for _ in range(5):
             s.step()
-        assert s.time_ns == 20 * 10 ** 6
+        assert s.time_ns == 20 * 10**6
     finally:
         s.close()
 
@@ -391,8 +419,9 @@ def test_robot_without_world_joint_is_free_and_feels_the_worlds_gravity(gravity,
     cfg.gravity = gravity
     s = Simulation(cfg)
     try:
-        model = s.spawn_urdf('crate', '<robot name="crate">%s</robot>' % box_link('crate'),
-                             position=(0, 0, 1.0))
+        model = s.spawn_urdf(
+            'crate', '<robot name="crate">%s</robot>' % box_link('crate'), position=(0, 0, 1.0)
+        )
         assert model.hw is None
         run(s, 1.0)
         z = model.robot.link_pose('crate')[0][2]

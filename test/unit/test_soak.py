@@ -102,8 +102,15 @@ def test_markdown_names_goals_and_other_load():
 
 def test_markdown_explains_stalls_and_skipped_frames_only_when_there_are_some():
     def text(data):
-        return soak.markdown({'figures': soak.judge(data, 60), 'minutes': soak.minute_rows(data),
-                              'minutes_asked': 3, 'machine': {'date': 'd', 'cpu': 'c', 'cores': 2}})
+        return soak.markdown(
+            {
+                'figures': soak.judge(data, 60),
+                'minutes': soak.minute_rows(data),
+                'minutes_asked': 3,
+                'machine': {'date': 'd', 'cpu': 'c', 'cores': 2},
+            }
+        )
+
     smooth = samples(minutes=3)
     assert 'falls behind in steps' not in text(smooth) and 'skipped' not in text(smooth)
     stalled = samples(minutes=3, stall=(150.0, 0.3))

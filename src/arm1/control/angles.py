@@ -1,4 +1,5 @@
 """Angle arithmetic of the ROS ``angles`` package, as the position controllers use it."""
+
 from __future__ import annotations
 
 import math
@@ -28,9 +29,9 @@ def two_pi_complement(angle: float) -> float:
     return TWO_PI
 
 
-def shortest_angular_distance_with_large_limits(from_angle: float, to_angle: float,
-                                                left_limit: float,
-                                                right_limit: float) -> Tuple[float, bool]:
+def shortest_angular_distance_with_large_limits(
+    from_angle: float, to_angle: float, left_limit: float, right_limit: float
+) -> Tuple[float, bool]:
     """Shortest turn from ``from_angle`` to ``to_angle`` that stays inside the limits.
 
     Returns ``(distance, ok)``; ``ok`` is False when no turn stays inside, or when

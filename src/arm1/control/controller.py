@@ -4,6 +4,7 @@ Time is integer nanoseconds of sim time everywhere here: ``time_ns`` is now, ``p
 the sim time since the previous update. Controllers reach ROS and the joints through the
 Protocols of interfaces.py.
 """
+
 from __future__ import annotations
 
 from typing import Any, ClassVar, List, Literal, Optional, Tuple
@@ -37,8 +38,9 @@ class Controller:
         self.state: State = 'constructed'
 
     # -- what the manager calls -------------------------------------------------
-    def init_request(self, robot_hw: RobotHW, root_nh: NodeHandle,
-                     controller_nh: NodeHandle) -> None:
+    def init_request(
+        self, robot_hw: RobotHW, root_nh: NodeHandle, controller_nh: NodeHandle
+    ) -> None:
         self.init(robot_hw, root_nh, controller_nh)
         self.state = 'initialized'
 

@@ -7,6 +7,7 @@ the caller waits for it (so while physics is paused it waits, as in Gazebo).
 Whether a controller runs is the controller's own ``state`` (as in ros_control's
 ControllerBase); the manager changes it only through start_request / stop_request.
 """
+
 from __future__ import annotations
 
 import logging
@@ -33,7 +34,7 @@ MAX_LISTED = 5  # names a message lists before it says how many more
 def shown(name: str, width: int = 60) -> str:
     """A name as a message quotes it: cut to ``width`` characters, control characters escaped."""
     text = name if name.isprintable() else repr(name)[1:-1]
-    return text if len(text) <= width else '%s...(%d characters)' % (text[:width - 20], len(name))
+    return text if len(text) <= width else '%s...(%d characters)' % (text[: width - 20], len(name))
 
 
 def listed(names: Sequence[str]) -> str:
@@ -49,8 +50,9 @@ class ControllerManagerError(Exception):
 class _Loaded:
     __slots__ = ('name', 'type', 'controller', 'nodes')
 
-    def __init__(self, name: str, type_name: str, controller: Controller,
-                 nodes: Tuple[NodeHandle, ...]) -> None:
+    def __init__(
+        self, name: str, type_name: str, controller: Controller, nodes: Tuple[NodeHandle, ...]
+    ) -> None:
         self.name, self.type, self.controller, self.nodes = name, type_name, controller, nodes
 
     @property
@@ -60,6 +62,7 @@ class _Loaded:
 
 class _Switch:
     """A switch request waiting for the next update."""
+
     __slots__ = ('start', 'stop', 'done', 'result')
 
     def __init__(self, start: List[_Loaded], stop: List[_Loaded]) -> None:
@@ -89,16 +92,27 @@ class ControllerManager:
         return sorted(CONTROLLER_TYPES)
 
     def load_controller(self, name: str) -> Controller:
-        if not isinstance(name, str) or len(name) > MAX_NAME_LENGTH \
-                or not CONTROLLER_NAME.match(name):
+        if (
+            not isinstance(name, str)
+            or len(name) > MAX_NAME_LENGTH
+            or not CONTROLLER_NAME.match(name)
+        ):
             raise ControllerManagerError(
-                "Could not load controller '%s': %s" % (shown(str(name)), 'the name is empty'
-                    if not name else 'not a valid controller name (a relative ROS name of at '
-                    'most %d characters: letters, digits, _ and /)' % MAX_NAME_LENGTH))
+                "Could not load controller '%s': %s"
+                % (
+                    shown(str(name)),
+                    'the name is empty'
+                    if not name
+                    else 'not a valid controller name (a relative ROS name of at '
+                    'most %d characters: letters, digits, _ and /)' % MAX_NAME_LENGTH,
+                )
+            )
         with self._lock:
             if name in self._loaded or name in self._loading:
-                raise ControllerManagerError("A controller named '%s' was already loaded inside "
-                                             "the controller manager" % name)
+                raise ControllerManagerError(
+                    "A controller named '%s' was already loaded inside "
+                    "the controller manager" % name
+                )
             self._loading.add(name)
         try:
             return self._load(name)
@@ -115,13 +129,15 @@ class ControllerManager:
             raise ControllerManagerError(
                 "Could not load controller '%s' because the type was not specified. Did you load "
                 "the controller configuration on the parameter server (namespace: '%s')?"
-                % (name, ns))
+                % (name, ns)
+            )
         cls = CONTROLLER_TYPES.get(type_name)
         if cls is None:
             controller_nh.shutdown()
             raise ControllerManagerError(
                 "Could not load controller '%s' because controller type '%s' does not exist. "
-                "Known types: %s" % (name, type_name, ', '.join(self.controller_types())))
+                "Known types: %s" % (name, type_name, ', '.join(self.controller_types()))
+            )
         controller = cls()
         controller.name = name
         root_nh = self.node_factory(self.namespace)
@@ -141,23 +157,33 @@ class ControllerManager:
             if entry is None:
                 raise ControllerManagerError(
                     "Could not unload controller with name '%s' because no controller with this "
-                    "name exists" % shown(str(name)))
+                    "name exists" % shown(str(name))
+                )
             if entry.state == 'running':
                 raise ControllerManagerError(
-                    "Could not unload controller with name '%s' because it is still running" % name)
+                    "Could not unload controller with name '%s' because it is still running" % name
+                )
             del self._loaded[name]
         for nh in entry.nodes:
             nh.shutdown()
 
-    def switch_controller(self, start: Sequence[str], stop: Sequence[str],
-                          strictness: int = STRICT, timeout: Optional[float] = 0.0) -> bool:
+    def switch_controller(
+        self,
+        start: Sequence[str],
+        stop: Sequence[str],
+        strictness: int = STRICT,
+        timeout: Optional[float] = 0.0,
+    ) -> bool:
         """Start and stop controllers at the next update; True when it happened.
 
         ``timeout`` in wall seconds; 0, negative, non-finite or beyond what a wait can take
         mean none (the caller waits for the next update, as ros_control's 0 does)."""
         if strictness not in (BEST_EFFORT, STRICT):
-            log.warning('switch_controller: strictness %s is neither BEST_EFFORT (1) nor STRICT '
-                        '(2); defaulting to BEST_EFFORT', strictness)
+            log.warning(
+                'switch_controller: strictness %s is neither BEST_EFFORT (1) nor STRICT '
+                '(2); defaulting to BEST_EFFORT',
+                strictness,
+            )
             strictness = BEST_EFFORT
         if timeout is None or not (math.isfinite(timeout) and 0 < timeout < threading.TIMEOUT_MAX):
             timeout = None
@@ -183,15 +209,19 @@ class ControllerManager:
         log.error('Switching controllers timed out after %.3f s (is physics paused?)', timeout)
         return False
 
-    def _checked(self, names: Sequence[str], verb: str, ok: Callable[[Controller], bool],
-                 strictness: int) -> Optional[List[_Loaded]]:
+    def _checked(
+        self, names: Sequence[str], verb: str, ok: Callable[[Controller], bool], strictness: int
+    ) -> Optional[List[_Loaded]]:
         out: List[_Loaded] = []
         skipped: Dict[str, List[str]] = {}  # why -> names: a long list of bad names, one message
         for name in names:
             entry = self._loaded.get(name)
             if entry is None or not ok(entry.controller):
-                why = 'is not loaded' if entry is None else (
-                    'is already running' if verb == 'start' else 'is not running')
+                why = (
+                    'is not loaded'
+                    if entry is None
+                    else ('is already running' if verb == 'start' else 'is not running')
+                )
                 if strictness == STRICT:
                     log.error("Could not %s controller '%s': it %s", verb, shown(name), why)
                     return None
@@ -199,10 +229,14 @@ class ControllerManager:
                 continue
             out.append(entry)
         for why, bad in skipped.items():
-            log.warning('Not %s controller%s %s: %s %s',
-                        'starting' if verb == 'start' else 'stopping', 's' if len(bad) > 1 else '',
-                        listed(bad), 'it' if len(bad) == 1 else 'they',
-                        why.replace('is ', 'are ') if len(bad) > 1 else why)
+            log.warning(
+                'Not %s controller%s %s: %s %s',
+                'starting' if verb == 'start' else 'stopping',
+                's' if len(bad) > 1 else '',
+                listed(bad),
+                'it' if len(bad) == 1 else 'they',
+                why.replace('is ', 'are ') if len(bad) > 1 else why,
+            )
         return out
 
     def _resource_conflict(self, start: List[_Loaded], stop: List[_Loaded]) -> Optional[str]:
@@ -213,15 +247,20 @@ class ControllerManager:
                     for joint in joints:
                         if (iface, joint) in owners:
                             return "joint '%s' would be claimed by both '%s' and '%s'" % (
-                                joint, owners[(iface, joint)], entry.name)
+                                joint,
+                                owners[(iface, joint)],
+                                entry.name,
+                            )
                         owners[(iface, joint)] = entry.name
         return None
 
     def list_controllers(self) -> List[ControllerInfo]:
         """``[(name, type, state, claimed_resources)]`` in load order."""
         with self._lock:
-            return [(e.name, e.type, e.state, e.controller.claimed_resources())
-                    for e in self._loaded.values()]
+            return [
+                (e.name, e.type, e.state, e.controller.claimed_resources())
+                for e in self._loaded.values()
+            ]
 
     def controller(self, name: str) -> Optional[Controller]:
         entry = self._loaded.get(name)
@@ -254,8 +293,9 @@ class ControllerManager:
                     entry.controller.stop_request(time_ns)
                 for entry in request.start:
                     entry.controller.start_request(time_ns)
-            self._running = tuple(e.controller for e in self._loaded.values()
-                                  if e.controller.running)
+            self._running = tuple(
+                e.controller for e in self._loaded.values() if e.controller.running
+            )
         for request in requests:
             request.done.set()
 

@@ -1,5 +1,6 @@
 """Joint handles and effort saturation, as hardware_interface and joint_limits_interface
 have them."""
+
 from __future__ import annotations
 
 import math
@@ -13,9 +14,17 @@ from ..description.joint_limits import (
     JointLimits,
 )
 
-__all__ = ['EFFORT_JOINT_INTERFACE', 'POSITION_JOINT_INTERFACE', 'VELOCITY_JOINT_INTERFACE',
-           'JointHandle', 'JointLimits', 'SaturationBounds', 'saturation_bounds',
-           'enforce_effort_limits', 'saturate_effort']
+__all__ = [
+    'EFFORT_JOINT_INTERFACE',
+    'POSITION_JOINT_INTERFACE',
+    'VELOCITY_JOINT_INTERFACE',
+    'JointHandle',
+    'JointLimits',
+    'SaturationBounds',
+    'saturation_bounds',
+    'enforce_effort_limits',
+    'saturate_effort',
+]
 
 
 @dataclass
@@ -23,6 +32,7 @@ class JointHandle:
     """One joint of the hardware: its state, read from the simulation, and ``command``, the
     hardware command a controller writes (ros_control's setCommand), in the unit of the
     joint's ``interface``: an effort, a position or a velocity."""
+
     name: str
     type: str  # 'revolute', 'continuous' or 'prismatic'
     limits: JointLimits = field(default_factory=JointLimits)
@@ -40,22 +50,36 @@ SaturationBounds = Tuple[float, float, float, float]
 def saturation_bounds(limits: JointLimits) -> SaturationBounds:
     """``(max effort, lower, upper, max velocity)`` of JointLimits, inf where there is none."""
     inf = math.inf
-    lower, upper = ((limits.lower, limits.upper)
-                    if limits.lower is not None and limits.upper is not None else (-inf, inf))
-    return (limits.effort if limits.effort is not None and limits.effort > 0 else inf,
-            lower, upper,
-            limits.velocity if limits.velocity is not None and limits.velocity > 0 else inf)
+    lower, upper = (
+        (limits.lower, limits.upper)
+        if limits.lower is not None and limits.upper is not None
+        else (-inf, inf)
+    )
+    return (
+        limits.effort if limits.effort is not None and limits.effort > 0 else inf,
+        lower,
+        upper,
+        limits.velocity if limits.velocity is not None and limits.velocity > 0 else inf,
+    )
 
 
-def enforce_effort_limits(command: float, position: float, velocity: float,
-                          limits: JointLimits) -> float:
+def enforce_effort_limits(
+    command: float, position: float, velocity: float, limits: JointLimits
+) -> float:
     """gazebo_ros_control's effort saturation for EffortJointInterface joints
     (see saturate_effort)."""
     return saturate_effort(command, position, velocity, *saturation_bounds(limits))
 
 
-def saturate_effort(command: float, position: float, velocity: float, max_effort: float,
-                    lower: float, upper: float, max_velocity: float) -> float:
+def saturate_effort(
+    command: float,
+    position: float,
+    velocity: float,
+    max_effort: float,
+    lower: float,
+    upper: float,
+    max_velocity: float,
+) -> float:
     """Clamp to +-max_effort; zero any effort pushing further beyond a position limit or
     further beyond the velocity limit. Bounds come from saturation_bounds, once per joint."""
     if not math.isfinite(command):

@@ -7,6 +7,7 @@ namespace, e.g. ``/arm1``) and ``controller_nh`` (the controller's own, e.g.
 controller manager's ``node_factory`` type makes mypy hold each of them to this contract.
 Joints come from a RobotHW (robot_hw_sim.py simulates one).
 """
+
 from __future__ import annotations
 
 from typing import Any, Callable, Dict, List, Mapping, Optional, Protocol, runtime_checkable
@@ -58,14 +59,18 @@ class NodeHandle(Protocol):
         """``callback`` gets the message's ``data`` (e.g. a float for std_msgs/Float64)."""
         ...
 
-    def action_server(self, name: str, type_name: str, on_goal: Callable[[GoalHandle], None],
-                      on_cancel: Callable[[GoalHandle], None]) -> object:
+    def action_server(
+        self,
+        name: str,
+        type_name: str,
+        on_goal: Callable[[GoalHandle], None],
+        on_cancel: Callable[[GoalHandle], None],
+    ) -> object:
         """An action server at ``name`` (e.g. 'control_msgs/FollowJointTrajectory'); the
         callbacks may run on any thread and decide a goal's fate through its handle."""
         ...
 
-    def serve(self, name: str, type_name: str,
-              handler: Callable[[Fields], Fields]) -> object:
+    def serve(self, name: str, type_name: str, handler: Callable[[Fields], Fields]) -> object:
         """A service: ``handler(request fields)`` returns the response's fields or raises
         ValueError (the call fails with its message)."""
         ...
@@ -79,8 +84,13 @@ class NodeHandle(Protocol):
 class ConfigServer(Protocol):
     """A node handle that also offers live parameters (dynamic_reconfigure); optional."""
 
-    def serve_config(self, namespace: str, type_name: str, current: Dict[str, Any],
-                     on_change: Callable[[Dict[str, Any]], Dict[str, Any]]) -> object:
+    def serve_config(
+        self,
+        namespace: str,
+        type_name: str,
+        current: Dict[str, Any],
+        on_change: Callable[[Dict[str, Any]], Dict[str, Any]],
+    ) -> object:
         """Serve ``current`` at ``namespace``; ``on_change(values)`` returns the values in force."""
         ...
 

@@ -1,4 +1,5 @@
 """effort_controllers/JointPositionController: a PID from position error to effort."""
+
 from __future__ import annotations
 
 import logging
@@ -71,16 +72,24 @@ class JointPositionController(Controller):
                     new[key] = bool(gains[key]) if key == 'antiwindup' else float(gains[key])
             bad = [k for k in GAIN_KEYS if not math.isfinite(new[k])]
             if bad or new['i_clamp_min'] > new['i_clamp_max']:
-                log.error('%s: refusing pid gains %s (%s); keeping %s', self.name, new,
-                          'non-finite ' + ', '.join(bad) if bad else 'i_clamp_min > i_clamp_max',
-                          current)
+                log.error(
+                    '%s: refusing pid gains %s (%s); keeping %s',
+                    self.name,
+                    new,
+                    'non-finite ' + ', '.join(bad) if bad else 'i_clamp_min > i_clamp_max',
+                    current,
+                )
                 return current
             negative = ['%s=%g' % (k, new[k]) for k in ('p', 'i', 'd') if new[k] < 0]
             if negative:
                 # Allowed (control_toolbox's ranges are symmetric), but a negative gain drives
                 # the joint away from its target: say so.
-                log.warning('%s: negative pid gain(s) %s for joint %s push it away from its '
-                            'target', self.name, ', '.join(negative), self.joint.name)
+                log.warning(
+                    '%s: negative pid gain(s) %s for joint %s push it away from its target',
+                    self.name,
+                    ', '.join(negative),
+                    self.joint.name,
+                )
             self._pending_gains = new
             return dict(new)
 
@@ -93,17 +102,28 @@ class JointPositionController(Controller):
             now = time.monotonic()
             if now - self._last_warn > WARN_PERIOD:
                 self._last_warn = now
-                log.warning('%s: ignoring non-finite command %r for joint %s; holding %.4f',
-                            self.name, position, self.joint.name, self.target)
+                log.warning(
+                    '%s: ignoring non-finite command %r for joint %s; holding %.4f',
+                    self.name,
+                    position,
+                    self.joint.name,
+                    self.target,
+                )
             return False
         if not self._lower <= position <= self._upper and not self._clamp_said:
             # Clamped in update, as ros_control does silently; said once per start so that a
             # runaway value is visible without a warning per message of a sine into the limits.
             self._clamp_said = True
-            log.warning('%s: command %g for joint %s is outside its limits [%.4f, %.4f]: '
-                        'clamped to %.4f (said once; later ones are clamped silently)',
-                        self.name, position, self.joint.name, self._lower, self._upper,
-                        min(max(position, self._lower), self._upper))
+            log.warning(
+                '%s: command %g for joint %s is outside its limits [%.4f, %.4f]: '
+                'clamped to %.4f (said once; later ones are clamped silently)',
+                self.name,
+                position,
+                self.joint.name,
+                self._lower,
+                self._upper,
+                min(max(position, self._lower), self._upper),
+            )
         self.target = float(position)
         return True
 
@@ -125,13 +145,15 @@ class JointPositionController(Controller):
         # For a target clamped inside limits narrower than a full turn, the angles package's
         # shortest distance within the limits is the plain difference: skip the general rule.
         self._plain_error = j.type == 'prismatic' or (
-            j.type == 'revolute' and clamped and self._upper - self._lower < 2 * math.pi)
+            j.type == 'revolute' and clamped and self._upper - self._lower < 2 * math.pi
+        )
 
     def error(self, set_point: float) -> float:
         j, lim = self.joint, self.joint.limits
         if j.type == 'revolute' and lim.lower is not None and lim.upper is not None:
             return shortest_angular_distance_with_large_limits(
-                j.position, set_point, lim.lower, lim.upper)[0]
+                j.position, set_point, lim.lower, lim.upper
+            )[0]
         if j.type == 'continuous':
             return shortest_angular_distance(j.position, set_point)
         return set_point - j.position
@@ -140,8 +162,14 @@ class JointPositionController(Controller):
         if self._pending_gains is not None:
             with self._gains_lock:
                 gains, self._pending_gains = self._pending_gains, None
-            self.pid.set_gains(gains['p'], gains['i'], gains['d'], gains['i_clamp_max'],
-                               gains['i_clamp_min'], gains['antiwindup'])
+            self.pid.set_gains(
+                gains['p'],
+                gains['i'],
+                gains['d'],
+                gains['i_clamp_max'],
+                gains['i_clamp_min'],
+                gains['antiwindup'],
+            )
 
     def update(self, time_ns: int, period_ns: int) -> None:
         self._apply_pending_gains()
@@ -154,10 +182,21 @@ class JointPositionController(Controller):
             self._state_pub.publish(self._state(time_ns, set_point, error, dt, effort))
         self._loop_count += 1
 
-    def _state(self, time_ns: int, set_point: float, error: float, dt: float,
-               effort: float) -> Dict[str, Any]:
+    def _state(
+        self, time_ns: int, set_point: float, error: float, dt: float, effort: float
+    ) -> Dict[str, Any]:
         pid = self.pid
-        return dict(stamp=time_ns, set_point=set_point, process_value=self.joint.position,
-                    process_value_dot=self.joint.velocity, error=error, time_step=dt,
-                    command=effort, p=pid.p, i=pid.i, d=pid.d, i_clamp=pid.i_max,
-                    antiwindup=pid.antiwindup)
+        return dict(
+            stamp=time_ns,
+            set_point=set_point,
+            process_value=self.joint.position,
+            process_value_dot=self.joint.velocity,
+            error=error,
+            time_step=dt,
+            command=effort,
+            p=pid.p,
+            i=pid.i,
+            d=pid.d,
+            i_clamp=pid.i_max,
+            antiwindup=pid.antiwindup,
+        )

@@ -1,5 +1,6 @@
 """joint_state_controller/JointStateController: publishes every joint at publish_rate in sim
 time."""
+
 from __future__ import annotations
 
 from typing import List, Optional, Tuple
@@ -35,8 +36,15 @@ class JointStateController(Controller):
         names = controller_nh.params.get('joints') or robot_hw.joint_names()
         self.joints = [robot_hw.get_handle(n, None, ns) for n in names]
         extra = controller_nh.params.get('extra_joints') or []
-        self._extra = [(e['name'], float(e.get('position', 0.0)), float(e.get('velocity', 0.0)),
-                        float(e.get('effort', 0.0))) for e in extra]
+        self._extra = [
+            (
+                e['name'],
+                float(e.get('position', 0.0)),
+                float(e.get('velocity', 0.0)),
+                float(e.get('effort', 0.0)),
+            )
+            for e in extra
+        ]
         self._names = [j.name for j in self.joints] + [e[0] for e in self._extra]
         self._pub = root_nh.advertise('joint_states', 'sensor_msgs/JointState', 4)
 
@@ -55,8 +63,12 @@ class JointStateController(Controller):
         else:
             return
         joints, extra = self.joints, self._extra
-        self._pub.publish(dict(
-            stamp=time_ns, name=self._names,
-            position=[j.position for j in joints] + [e[1] for e in extra],
-            velocity=[j.velocity for j in joints] + [e[2] for e in extra],
-            effort=[j.effort for j in joints] + [e[3] for e in extra]))
+        self._pub.publish(
+            dict(
+                stamp=time_ns,
+                name=self._names,
+                position=[j.position for j in joints] + [e[1] for e in extra],
+                velocity=[j.velocity for j in joints] + [e[2] for e in extra],
+                effort=[j.effort for j in joints] + [e[3] for e in extra],
+            )
+        )

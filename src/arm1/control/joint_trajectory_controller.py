@@ -6,6 +6,7 @@ active goal and the time data. Goal handles are told their fate from the callbac
 that lock (actionlib's own lock is already held there, re-entrantly), but from ``update``
 only after it is released, so the two locks are never taken in the other order.
 """
+
 from __future__ import annotations
 
 import logging
@@ -101,8 +102,9 @@ class JointTrajectoryController(Controller):
         ns, params = controller_nh.namespace, controller_nh.params
         joints = require_param(params, 'joints', ns)
         if not (isinstance(joints, list) and joints and all(isinstance(j, str) for j in joints)):
-            raise ControllerError("%s: the 'joints' parameter is not a non-empty array of "
-                                  "strings: %r" % (ns, joints))
+            raise ControllerError(
+                "%s: the 'joints' parameter is not a non-empty array of strings: %r" % (ns, joints)
+            )
         if len(set(joints)) != len(joints):
             raise ControllerError('%s: joints %r name a joint twice' % (ns, joints))
         self.joint_names = list(joints)
@@ -113,9 +115,12 @@ class JointTrajectoryController(Controller):
         if not isinstance(gains, dict) or not isinstance(ff, dict):
             raise ControllerError("%s: 'gains' and 'velocity_ff' must be maps by joint" % ns)
         try:
-            self.pids = [Pid() if self.commands_position
-                         else Pid.from_params(gains.get(j), '%s/gains/%s' % (ns, j))
-                         for j in joints]
+            self.pids = [
+                Pid()
+                if self.commands_position
+                else Pid.from_params(gains.get(j), '%s/gains/%s' % (ns, j))
+                for j in joints
+            ]
         except PidConfigError as exc:  # upstream loads half-built and crashes later
             raise ControllerError(str(exc))
         self.velocity_ff = [_float(ff.get(j, 0.0), 'velocity_ff/' + j, ns) for j in joints]
@@ -123,33 +128,52 @@ class JointTrajectoryController(Controller):
         if not isinstance(constraints, dict):
             raise ControllerError("%s: 'constraints' must be a map" % ns)
         goal_time = _float(constraints.get('goal_time', 0.0), 'constraints/goal_time', ns)
-        stopped = _float(constraints.get('stopped_velocity_tolerance', 0.01),
-                         'constraints/stopped_velocity_tolerance', ns)
+        stopped = _float(
+            constraints.get('stopped_velocity_tolerance', 0.01),
+            'constraints/stopped_velocity_tolerance',
+            ns,
+        )
         self.default_tolerances = []
         for j in joints:
             c = constraints.get(j, {})
             if not isinstance(c, dict):
                 raise ControllerError("%s: 'constraints/%s' must be a map" % (ns, j))
-            self.default_tolerances.append(Tolerances(
-                path=Tolerance(position=_float(c.get('trajectory', 0.0),
-                                               'constraints/%s/trajectory' % j, ns)),
-                goal=Tolerance(position=_float(c.get('goal', 0.0), 'constraints/%s/goal' % j, ns),
-                               velocity=stopped),
-                goal_time=goal_time))
-        for key, attr in (('state_publish_rate', 'state_publish_period'),
-                          ('action_monitor_rate', 'action_monitor_period')):
+            self.default_tolerances.append(
+                Tolerances(
+                    path=Tolerance(
+                        position=_float(
+                            c.get('trajectory', 0.0), 'constraints/%s/trajectory' % j, ns
+                        )
+                    ),
+                    goal=Tolerance(
+                        position=_float(c.get('goal', 0.0), 'constraints/%s/goal' % j, ns),
+                        velocity=stopped,
+                    ),
+                    goal_time=goal_time,
+                )
+            )
+        for key, attr in (
+            ('state_publish_rate', 'state_publish_period'),
+            ('action_monitor_rate', 'action_monitor_period'),
+        ):
             rate = _float(params.get(key, 50.0 if key == 'state_publish_rate' else 20.0), key, ns)
             if rate <= 0:
                 raise ControllerError('%s/%s must be positive, not %g' % (ns, key, rate))
             setattr(self, attr, 1.0 / rate)
-        self.stop_trajectory_duration = max(0.0, _float(
-            params.get('stop_trajectory_duration', 0.0), 'stop_trajectory_duration', ns))
+        self.stop_trajectory_duration = max(
+            0.0, _float(params.get('stop_trajectory_duration', 0.0), 'stop_trajectory_duration', ns)
+        )
         self.allow_partial = bool(params.get('allow_partial_joints_goal', False))
         self._state_pub = controller_nh.advertise(
-            'state', 'control_msgs/JointTrajectoryControllerState', 1)
+            'state', 'control_msgs/JointTrajectoryControllerState', 1
+        )
         controller_nh.subscribe('command', 'trajectory_msgs/JointTrajectory', self.on_command)
-        controller_nh.action_server('follow_joint_trajectory', 'control_msgs/FollowJointTrajectory',
-                                    self.on_goal, self.on_cancel)
+        controller_nh.action_server(
+            'follow_joint_trajectory',
+            'control_msgs/FollowJointTrajectory',
+            self.on_goal,
+            self.on_cancel,
+        )
         controller_nh.serve('query_state', 'control_msgs/QueryTrajectoryState', self.query_state)
 
     # -- run state -------------------------------------------------------------------------
@@ -173,8 +197,9 @@ class JointTrajectoryController(Controller):
             for j in self.joints:
                 j.command = 0.0
 
-    def _hold(self, i: int, goal: Optional[GoalHandle] = None,
-              tolerances: Optional[Tolerances] = None) -> Segment:
+    def _hold(
+        self, i: int, goal: Optional[GoalHandle] = None, tolerances: Optional[Tolerances] = None
+    ) -> Segment:
         """Joint i's hold from now on (upstream's setHoldPosition; lock held)."""
         if self.stop_trajectory_duration > 0 and self.trajectory:
             _, (p, v, _) = sample(self.trajectory[i], self.uptime)
@@ -206,9 +231,12 @@ class JointTrajectoryController(Controller):
         with self._lock:
             goal = gh.goal
             if not self.running:
-                gh.reject(dict(error_code=INVALID_GOAL,
-                               error_string="Can't accept new action goals. Controller is "
-                                            "not running."))
+                gh.reject(
+                    dict(
+                        error_code=INVALID_GOAL,
+                        error_string="Can't accept new action goals. Controller is not running.",
+                    )
+                )
                 return
             try:
                 traj = goal.get('trajectory') or {}
@@ -237,43 +265,56 @@ class JointTrajectoryController(Controller):
     def _check_joints(self, names: Sequence[str]) -> None:
         unknown = [n for n in names if n not in self.joint_names]
         if unknown:
-            raise TrajectoryError('Joint(s) %s are not controlled by %s (its joints: %s)'
-                                  % (', '.join(map(repr, unknown)), self.name,
-                                     ', '.join(self.joint_names)), INVALID_JOINTS)
+            raise TrajectoryError(
+                'Joint(s) %s are not controlled by %s (its joints: %s)'
+                % (', '.join(map(repr, unknown)), self.name, ', '.join(self.joint_names)),
+                INVALID_JOINTS,
+            )
         dup = sorted({n for n in names if list(names).count(n) > 1})
         if dup:
-            raise TrajectoryError('Joint(s) %s named more than once' % ', '.join(dup),
-                                  INVALID_JOINTS)
+            raise TrajectoryError(
+                'Joint(s) %s named more than once' % ', '.join(dup), INVALID_JOINTS
+            )
         if not self.allow_partial and len(names) != len(self.joint_names):
             missing = [n for n in self.joint_names if n not in names]
-            raise TrajectoryError('Cannot create trajectory from message. It does not contain '
-                                  'the expected joints (missing: %s; allow_partial_joints_goal '
-                                  'is false).' % ', '.join(missing), INVALID_JOINTS)
+            raise TrajectoryError(
+                'Cannot create trajectory from message. It does not contain '
+                'the expected joints (missing: %s; allow_partial_joints_goal '
+                'is false).' % ', '.join(missing),
+                INVALID_JOINTS,
+            )
 
     def _goal_tolerances(self, goal: Fields) -> List[Tolerances]:
         """The defaults, overridden by the goal: > 0 sets, < 0 erases, 0 keeps."""
-        out = [Tolerances(Tolerance(**vars(t.path)), Tolerance(**vars(t.goal)), t.goal_time)
-               for t in self.default_tolerances]
+        out = [
+            Tolerances(Tolerance(**vars(t.path)), Tolerance(**vars(t.goal)), t.goal_time)
+            for t in self.default_tolerances
+        ]
 
         def merge(tol: Tolerance, given: Mapping[str, Any]) -> None:
             for key in ('position', 'velocity', 'acceleration'):
                 value = float(given.get(key, 0.0))
                 if not math.isfinite(value):
-                    raise TrajectoryError('tolerance %s of joint %s is %r'
-                                          % (key, given.get('name'), value))
+                    raise TrajectoryError(
+                        'tolerance %s of joint %s is %r' % (key, given.get('name'), value)
+                    )
                 if value > 0:
                     setattr(tol, key, value)
                 elif value < 0:
                     setattr(tol, key, 0.0)
 
-        for field, pick in (('path_tolerance', lambda t: t.path),
-                            ('goal_tolerance', lambda t: t.goal)):
+        for field, pick in (
+            ('path_tolerance', lambda t: t.path),
+            ('goal_tolerance', lambda t: t.goal),
+        ):
             entries: Sequence[Mapping[str, Any]] = goal.get(field) or []
             for entry in entries:
                 name = entry.get('name')
                 if name not in self.joint_names:
-                    raise TrajectoryError('%s names joint %r, which %s does not control'
-                                          % (field, name, self.name), INVALID_JOINTS)
+                    raise TrajectoryError(
+                        '%s names joint %r, which %s does not control' % (field, name, self.name),
+                        INVALID_JOINTS,
+                    )
                 merge(pick(out[self.joint_names.index(name)]), entry)
         gtt = goal.get('goal_time_tolerance', 0) * NS
         for t in out:
@@ -283,8 +324,9 @@ class JointTrajectoryController(Controller):
                 t.goal_time = 0.0
         return out
 
-    def _take(self, msg: Fields, gh: Optional[GoalHandle],
-              tolerances: Optional[List[Tolerances]]) -> None:
+    def _take(
+        self, msg: Fields, gh: Optional[GoalHandle], tolerances: Optional[List[Tolerances]]
+    ) -> None:
         """Validate ``msg`` and merge it into the current trajectory (lock held); raises
         TrajectoryError and leaves the trajectory untouched when it cannot be taken."""
         points: List[Mapping[str, Any]] = list(msg.get('points') or [])
@@ -294,8 +336,9 @@ class JointTrajectoryController(Controller):
             return
         times = [int(p.get('time_from_start', 0)) for p in points]
         if any(b <= a for a, b in zip(times, times[1:])):
-            raise TrajectoryError('Trajectory message contains waypoints that are not strictly '
-                                  'increasing in time.')
+            raise TrajectoryError(
+                'Trajectory message contains waypoints that are not strictly increasing in time.'
+            )
         names = list(msg.get('joint_names') or [])
         self._check_joints(names)
         n = len(names)
@@ -304,20 +347,26 @@ class JointTrajectoryController(Controller):
             vel = list(point.get('velocities') or [])
             acc = list(point.get('accelerations') or [])
             if not pos:
-                raise TrajectoryError("Quintic spline segment can't be constructed: Endpoint "
-                                      "positions can't be empty (point %d)." % k)
+                raise TrajectoryError(
+                    "Quintic spline segment can't be constructed: Endpoint "
+                    "positions can't be empty (point %d)." % k
+                )
             if len(pos) != n:
-                raise TrajectoryError('Point %d has %d positions for %d joints (%s).'
-                                      % (k, len(pos), n, ', '.join(names)))
+                raise TrajectoryError(
+                    'Point %d has %d positions for %d joints (%s).'
+                    % (k, len(pos), n, ', '.join(names))
+                )
             if (vel and len(vel) != n) or (acc and len(acc) != n):
-                raise TrajectoryError('Size mismatch in trajectory point position, velocity or '
-                                      'acceleration data (point %d).' % k)
-            for field, values in (('positions', pos), ('velocities', vel),
-                                  ('accelerations', acc)):
+                raise TrajectoryError(
+                    'Size mismatch in trajectory point position, velocity or '
+                    'acceleration data (point %d).' % k
+                )
+            for field, values in (('positions', pos), ('velocities', vel), ('accelerations', acc)):
                 for j, v in enumerate(values):
                     if not math.isfinite(float(v)):
-                        raise TrajectoryError('Point %d: %s of joint %s is %r.'
-                                              % (k, field, names[j], v))
+                        raise TrajectoryError(
+                            'Point %d: %s of joint %s is %r.' % (k, field, names[j], v)
+                        )
         # Times in uptime: the next update happens at uptime + period, ROS time time + period.
         next_ros = self._time_ns + self._period_ns
         next_up = self.uptime + self._period_ns * NS
@@ -325,12 +374,19 @@ class JointTrajectoryController(Controller):
         start_up = next_up + ((stamp - next_ros) * NS if stamp else 0.0)
         first = next((k for k, t in enumerate(times) if start_up + t * NS > next_up), None)
         if first is None:
-            raise TrajectoryError('Dropping all %d trajectory point(s), as they occur before the '
-                                  'current time.\nLast point is %fs in the past.'
-                                  % (len(points), next_up - (start_up + times[-1] * NS)))
+            raise TrajectoryError(
+                'Dropping all %d trajectory point(s), as they occur before the '
+                'current time.\nLast point is %fs in the past.'
+                % (len(points), next_up - (start_up + times[-1] * NS))
+            )
         if first > 0 and not (first == 1 and times[0] == 0 and not stamp):
-            log.warning('%s: dropping first %d trajectory point(s) out of %d, as they occur '
-                        'before the current time.', self.name, first, len(points))
+            log.warning(
+                '%s: dropping first %d trajectory point(s) out of %d, as they occur '
+                'before the current time.',
+                self.name,
+                first,
+                len(points),
+            )
         new: List[JointTrajectory] = [list(t) for t in self.trajectory]
         bridge_start = max(start_up, next_up)
         for j, name in enumerate(names):
@@ -338,7 +394,7 @@ class JointTrajectoryController(Controller):
             cur = self.trajectory[i]
             k0 = _index(cur, next_up)
             k1 = _index(cur, start_up)
-            kept = cur[k0:max(k0, k1) + 1]
+            kept = cur[k0 : max(k0, k1) + 1]
             _, (p, v, a) = sample(kept, bridge_start)
             states = [_state(pt, j) for pt in points[first:]]
             if self.continuous[i]:
@@ -379,29 +435,45 @@ class JointTrajectoryController(Controller):
                 if self.commands_position:
                     joint.command = p
                 else:
-                    joint.command = (self.velocity_ff[i] * v
-                                     + self.pids[i].compute_command_with_rate(e_pos, e_vel, dt))
+                    joint.command = self.velocity_ff[i] * v + self.pids[
+                        i
+                    ].compute_command_with_rate(e_pos, e_vel, dt)
                 active = self._active
                 if active is None or seg.goal is None or seg.goal.id != active.id:
                     continue
                 tol = seg.tolerances
                 if self.uptime < seg.end:
                     if not tol.path.holds(e_pos, e_vel):
-                        outcomes.append((active, 'abort', dict(
-                            error_code=PATH_TOLERANCE_VIOLATED,
-                            error_string='%s path error %f' % (self.joint_names[i], e_pos))))
+                        outcomes.append(
+                            (
+                                active,
+                                'abort',
+                                dict(
+                                    error_code=PATH_TOLERANCE_VIOLATED,
+                                    error_string='%s path error %f' % (self.joint_names[i], e_pos),
+                                ),
+                            )
+                        )
                         self._active = None
                 elif k == len(traj) - 1:
                     if tol.goal.holds(e_pos, e_vel):
                         self._done[i] = True
                     elif self.uptime >= seg.end + tol.goal_time and not self._done[i]:
-                        outcomes.append((active, 'abort', dict(
-                            error_code=GOAL_TOLERANCE_VIOLATED,
-                            error_string='%s goal error %f' % (self.joint_names[i], e_pos))))
+                        outcomes.append(
+                            (
+                                active,
+                                'abort',
+                                dict(
+                                    error_code=GOAL_TOLERANCE_VIOLATED,
+                                    error_string='%s goal error %f' % (self.joint_names[i], e_pos),
+                                ),
+                            )
+                        )
                         self._active = None
             active = self._active
-            if active is not None and all(self._goal_joint_done(i, active)
-                                          for i in range(len(self.joints))):
+            if active is not None and all(
+                self._goal_joint_done(i, active) for i in range(len(self.joints))
+            ):
                 outcomes.append((active, 'succeed', dict(error_code=SUCCESSFUL, error_string='')))
                 self._active = None
             if self._active is None:
@@ -410,8 +482,10 @@ class JointTrajectoryController(Controller):
             if self.uptime - self._last_state_pub >= self.state_publish_period - 1e-9:
                 self._last_state_pub = self.uptime
                 self._state_pub.publish(state)
-            if (self._active is not None
-                    and self.uptime - self._last_feedback >= self.action_monitor_period - 1e-9):
+            if (
+                self._active is not None
+                and self.uptime - self._last_feedback >= self.action_monitor_period - 1e-9
+            ):
                 self._last_feedback = self.uptime
                 feedback = (self._active, state)
         for gh, what, result in outcomes:  # outside the lock: see the module docstring
@@ -425,18 +499,34 @@ class JointTrajectoryController(Controller):
             return True
         return not any(s.goal is not None and s.goal.id == active.id for s in self.trajectory[i])
 
-    def _state_fields(self, time_ns: int, desired: Sequence[Tuple[float, float, float]],
-                      errors: Sequence[Tuple[float, float]], seg_time: float) -> Dict[str, Any]:
+    def _state_fields(
+        self,
+        time_ns: int,
+        desired: Sequence[Tuple[float, float, float]],
+        errors: Sequence[Tuple[float, float]],
+        seg_time: float,
+    ) -> Dict[str, Any]:
         actual_time = seg_time  # upstream: start waypoint time + time in segment
         return dict(
-            stamp=time_ns, joint_names=list(self.joint_names),
-            desired=dict(positions=[d[0] for d in desired], velocities=[d[1] for d in desired],
-                         accelerations=[d[2] for d in desired], time_from_start=seg_time),
-            actual=dict(positions=[j.position for j in self.joints],
-                        velocities=[j.velocity for j in self.joints],
-                        time_from_start=actual_time),
-            error=dict(positions=[e[0] for e in errors], velocities=[e[1] for e in errors],
-                       time_from_start=0.0))
+            stamp=time_ns,
+            joint_names=list(self.joint_names),
+            desired=dict(
+                positions=[d[0] for d in desired],
+                velocities=[d[1] for d in desired],
+                accelerations=[d[2] for d in desired],
+                time_from_start=seg_time,
+            ),
+            actual=dict(
+                positions=[j.position for j in self.joints],
+                velocities=[j.velocity for j in self.joints],
+                time_from_start=actual_time,
+            ),
+            error=dict(
+                positions=[e[0] for e in errors],
+                velocities=[e[1] for e in errors],
+                time_from_start=0.0,
+            ),
+        )
 
     # -- query_state (any thread) ----------------------------------------------------------
     def query_state(self, request: Fields) -> Dict[str, Any]:
@@ -444,8 +534,9 @@ class JointTrajectoryController(Controller):
             if not self.running:
                 raise ValueError("Can't sample trajectory. Controller is not running.")
             t = self.uptime + (int(request.get('time', 0)) - self._time_ns) * NS
-            out: Dict[str, Any] = dict(name=list(self.joint_names), position=[], velocity=[],
-                                       acceleration=[])
+            out: Dict[str, Any] = dict(
+                name=list(self.joint_names), position=[], velocity=[], acceleration=[]
+            )
             for traj in self.trajectory:
                 if not traj or t < traj[0].start:
                     raise ValueError('Requested sample time precedes trajectory start time.')
@@ -466,10 +557,11 @@ def _index(traj: JointTrajectory, t: float) -> int:
 def _state(point: Mapping[str, Any], j: int) -> State:
     vel = point.get('velocities') or []
     acc = point.get('accelerations') or []
-    return State(float(point['positions'][j]),
-                 float(vel[j]) if vel else None,
-                 float(acc[j]) if acc and vel else None)
-
+    return State(
+        float(point['positions'][j]),
+        float(vel[j]) if vel else None,
+        float(acc[j]) if acc and vel else None,
+    )
 
 
 class PositionJointTrajectoryController(JointTrajectoryController):

@@ -4,6 +4,7 @@ The controllers update when at least one control period of sim time (the plugin'
 ``<controlPeriod>``, by default the physics step) has passed since they last did, and
 get that elapsed time as their period; the efforts they left are written every step.
 """
+
 from __future__ import annotations
 
 import logging
@@ -22,14 +23,23 @@ def control_period_ns(control_period: Optional[float], step_ns: int, who: str = 
     if control_period is None:
         return step_ns
     if not (math.isfinite(control_period) and control_period > 0):
-        log.error('%scontrolPeriod %r is not a positive number of seconds: controllers '
-                  'update every physics step (%g s)', who and who + ': ', control_period,
-                  step_ns * 1e-9)
+        log.error(
+            '%scontrolPeriod %r is not a positive number of seconds: controllers '
+            'update every physics step (%g s)',
+            who and who + ': ',
+            control_period,
+            step_ns * 1e-9,
+        )
         return step_ns
     period_ns = int(round(control_period * 1e9))
     if period_ns < step_ns:
-        log.error('%scontrolPeriod %g s is shorter than the physics step (%g s): controllers '
-                  'update every step', who and who + ': ', control_period, step_ns * 1e-9)
+        log.error(
+            '%scontrolPeriod %g s is shorter than the physics step (%g s): controllers '
+            'update every step',
+            who and who + ': ',
+            control_period,
+            step_ns * 1e-9,
+        )
     return period_ns
 
 

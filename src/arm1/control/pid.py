@@ -2,6 +2,7 @@
 
 Time steps ``dt`` are in seconds (control_toolbox takes a ros::Duration and uses toSec()).
 """
+
 from __future__ import annotations
 
 import math
@@ -20,8 +21,15 @@ class Pid:
     and i != 0 the accumulated error is clamped to [i_min/i, i_max/i].
     """
 
-    def __init__(self, p: float = 0.0, i: float = 0.0, d: float = 0.0, i_max: float = 0.0,
-                 i_min: float = 0.0, antiwindup: bool = False) -> None:
+    def __init__(
+        self,
+        p: float = 0.0,
+        i: float = 0.0,
+        d: float = 0.0,
+        i_max: float = 0.0,
+        i_min: float = 0.0,
+        antiwindup: bool = False,
+    ) -> None:
         self.set_gains(p, i, d, i_max, i_min, antiwindup)
         self.reset()
 
@@ -41,15 +49,22 @@ class Pid:
             raise PidConfigError('Bad pid gain under %s: %s' % (namespace, exc))
         return cls(p, i, d, i_max, i_min, bool(params.get('antiwindup', False)))
 
-    def set_gains(self, p: float, i: float, d: float, i_max: float, i_min: float,
-                  antiwindup: bool = False) -> None:
+    def set_gains(
+        self, p: float, i: float, d: float, i_max: float, i_min: float, antiwindup: bool = False
+    ) -> None:
         self.p, self.i, self.d = float(p), float(i), float(d)
         self.i_max, self.i_min = float(i_max), float(i_min)
         self.antiwindup = bool(antiwindup)
 
     def gains(self) -> Dict[str, Any]:
-        return dict(p=self.p, i=self.i, d=self.d, i_clamp_max=self.i_max,
-                    i_clamp_min=self.i_min, antiwindup=self.antiwindup)
+        return dict(
+            p=self.p,
+            i=self.i,
+            d=self.d,
+            i_clamp_max=self.i_max,
+            i_clamp_min=self.i_min,
+            antiwindup=self.antiwindup,
+        )
 
     def reset(self) -> None:
         self.p_error_last = 0.0

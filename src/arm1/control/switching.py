@@ -4,6 +4,7 @@
 one updating (a test, the tuner, a benchmark) must ask from another thread, the way a ROS
 service thread does, and keep updating until the answer comes.
 """
+
 from __future__ import annotations
 
 import threading
@@ -20,17 +21,32 @@ class SwitchTimeout(RuntimeError):
 class SwitchRequest:
     """``manager.switch_controller(start, stop, ...)`` called on a thread of its own."""
 
-    def __init__(self, manager: ControllerManager, start: Sequence[str], stop: Sequence[str] = (),
-                 strictness: int = STRICT, timeout: float = 0.0) -> None:
+    def __init__(
+        self,
+        manager: ControllerManager,
+        start: Sequence[str],
+        stop: Sequence[str] = (),
+        strictness: int = STRICT,
+        timeout: float = 0.0,
+    ) -> None:
         self.result: Optional[bool] = None  # what switch_controller returned, once it has
         self.error: Optional[BaseException] = None  # what it raised, if it did
         self._thread = threading.Thread(
-            target=self._call, args=(manager, list(start), list(stop), strictness, timeout),
-            name='switch_controller', daemon=True)
+            target=self._call,
+            args=(manager, list(start), list(stop), strictness, timeout),
+            name='switch_controller',
+            daemon=True,
+        )
         self._thread.start()
 
-    def _call(self, manager: ControllerManager, start: Sequence[str], stop: Sequence[str],
-              strictness: int, timeout: float) -> None:
+    def _call(
+        self,
+        manager: ControllerManager,
+        start: Sequence[str],
+        stop: Sequence[str],
+        strictness: int,
+        timeout: float,
+    ) -> None:
         try:
             self.result = manager.switch_controller(start, stop, strictness, timeout)
         except BaseException as exc:  # handed to the waiting thread by wait()
@@ -49,10 +65,16 @@ class SwitchRequest:
         return None if self._thread.is_alive() else self.result
 
 
-def switch_while_updating(manager: ControllerManager, start: Sequence[str],
-                          stop: Sequence[str], step: Callable[[], None], strictness: int = STRICT,
-                          timeout: float = 0.0, deadline: Optional[float] = 5.0,
-                          poll: float = 0.001) -> Tuple[bool, int]:
+def switch_while_updating(
+    manager: ControllerManager,
+    start: Sequence[str],
+    stop: Sequence[str],
+    step: Callable[[], None],
+    strictness: int = STRICT,
+    timeout: float = 0.0,
+    deadline: Optional[float] = 5.0,
+    poll: float = 0.001,
+) -> Tuple[bool, int]:
     """Switch from another thread while this one calls ``step()`` (an update or a physics
     step) every ``poll`` wall seconds until the switch returns.
 
@@ -68,6 +90,8 @@ def switch_while_updating(manager: ControllerManager, start: Sequence[str],
         request.wait(poll)
     result = request.wait(0)
     if result is None:
-        raise SwitchTimeout('switch_controller(start=%s, stop=%s) did not return within %s s '
-                            'while %d steps ran' % (list(start), list(stop), deadline, steps))
+        raise SwitchTimeout(
+            'switch_controller(start=%s, stop=%s) did not return within %s s '
+            'while %d steps ran' % (list(start), list(stop), deadline, steps)
+        )
     return result, steps

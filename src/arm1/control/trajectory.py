@@ -6,6 +6,7 @@ points carry: positions only -> linear, + velocities -> cubic, + accelerations -
 quintic (upstream's QuinticSplineSegment). Sampling before a segment gives its start
 position at rest, after it its end position at rest.
 """
+
 from __future__ import annotations
 
 import math
@@ -18,6 +19,7 @@ from .angles import shortest_angular_distance
 @dataclass
 class State:
     """A joint's position with, optionally, velocity and acceleration (None: not given)."""
+
     position: float
     velocity: Optional[float] = None
     acceleration: Optional[float] = None
@@ -32,20 +34,25 @@ class State:
 @dataclass
 class Tolerance:
     """A StateTolerance of upstream: 0 means unchecked."""
+
     position: float = 0.0
     velocity: float = 0.0
     acceleration: float = 0.0
 
-    def holds(self, position_error: float, velocity_error: float,
-              acceleration_error: float = 0.0) -> bool:
-        return not ((self.position > 0 and abs(position_error) > self.position)
-                    or (self.velocity > 0 and abs(velocity_error) > self.velocity)
-                    or (self.acceleration > 0 and abs(acceleration_error) > self.acceleration))
+    def holds(
+        self, position_error: float, velocity_error: float, acceleration_error: float = 0.0
+    ) -> bool:
+        return not (
+            (self.position > 0 and abs(position_error) > self.position)
+            or (self.velocity > 0 and abs(velocity_error) > self.velocity)
+            or (self.acceleration > 0 and abs(acceleration_error) > self.acceleration)
+        )
 
 
 @dataclass
 class Tolerances:
     """One joint's tolerances for the segments of one goal."""
+
     path: Tolerance = field(default_factory=Tolerance)
     goal: Tolerance = field(default_factory=Tolerance)
     goal_time: float = 0.0
@@ -56,8 +63,15 @@ class Segment:
 
     __slots__ = ('start', 'end', 'coefs', 'goal', 'tolerances', 'start_point_time')
 
-    def __init__(self, start: float, start_state: State, end: float, end_state: State,
-                 goal: Any = None, tolerances: Optional[Tolerances] = None) -> None:
+    def __init__(
+        self,
+        start: float,
+        start_state: State,
+        end: float,
+        end_state: State,
+        goal: Any = None,
+        tolerances: Optional[Tolerances] = None,
+    ) -> None:
         if not (math.isfinite(start) and math.isfinite(end)) or end < start:
             raise ValueError('segment end %r before its start %r' % (end, start))
         self.start, self.end = start, end
@@ -94,13 +108,23 @@ def spline_coefficients(s0: State, s1: State, T: float) -> List[float]:
         return [p0, (p1 - p0) / T, 0.0, 0.0, 0.0, 0.0]
     v0, v1 = s0.velocity or 0.0, s1.velocity or 0.0
     if order == 1:
-        return [p0, v0, (3 * (p1 - p0) - (2 * v0 + v1) * T) / T ** 2,
-                (2 * (p0 - p1) + (v0 + v1) * T) / T ** 3, 0.0, 0.0]
+        return [
+            p0,
+            v0,
+            (3 * (p1 - p0) - (2 * v0 + v1) * T) / T**2,
+            (2 * (p0 - p1) + (v0 + v1) * T) / T**3,
+            0.0,
+            0.0,
+        ]
     a0, a1 = s0.acceleration or 0.0, s1.acceleration or 0.0
-    return [p0, v0, a0 / 2,
-            (20 * (p1 - p0) - (8 * v1 + 12 * v0) * T - (3 * a0 - a1) * T ** 2) / (2 * T ** 3),
-            (30 * (p0 - p1) + (14 * v1 + 16 * v0) * T + (3 * a0 - 2 * a1) * T ** 2) / (2 * T ** 4),
-            (12 * (p1 - p0) - (6 * v1 + 6 * v0) * T - (a0 - a1) * T ** 2) / (2 * T ** 5)]
+    return [
+        p0,
+        v0,
+        a0 / 2,
+        (20 * (p1 - p0) - (8 * v1 + 12 * v0) * T - (3 * a0 - a1) * T**2) / (2 * T**3),
+        (30 * (p0 - p1) + (14 * v1 + 16 * v0) * T + (3 * a0 - 2 * a1) * T**2) / (2 * T**4),
+        (12 * (p1 - p0) - (6 * v1 + 6 * v0) * T - (a0 - a1) * T**2) / (2 * T**5),
+    ]
 
 
 JointTrajectory = List[Segment]  # one joint's segments, in time order
@@ -124,15 +148,17 @@ def sample(traj: JointTrajectory, t: float) -> Tuple[int, Tuple[float, float, fl
     return k, traj[k].sample(t)
 
 
-def hold_segment(t: float, position: float, velocity: float = 0.0,
-                 stop_duration: float = 0.0) -> Segment:
+def hold_segment(
+    t: float, position: float, velocity: float = 0.0, stop_duration: float = 0.0
+) -> Segment:
     """The hold of upstream's setHoldPosition: at ``position`` from ``t`` on; with a stop
     duration, a quintic from (position, velocity) reaching rest after it (the midpoint of a
     symmetric spline to (position, -velocity) over twice the duration)."""
     if stop_duration <= 0.0:
         return Segment(t, State(position), t, State(position))
-    full = Segment(t, State(position, velocity, 0.0), t + 2 * stop_duration,
-                   State(position, -velocity, 0.0))
+    full = Segment(
+        t, State(position, velocity, 0.0), t + 2 * stop_duration, State(position, -velocity, 0.0)
+    )
     p_mid, _, _ = full.sample(t + stop_duration)
     return Segment(t, State(position, velocity, 0.0), t + stop_duration, State(p_mid, 0.0, 0.0))
 

@@ -4,6 +4,7 @@ ConfigServer), implemented with rospy.
 It translates between the plain dicts and floats of the ROS-free core and ROS
 messages; nothing else happens here.
 """
+
 from __future__ import annotations
 
 import logging
@@ -55,8 +56,11 @@ def _fill_point(point: Any, fields: Fields) -> None:
     """A trajectory_msgs/JointTrajectoryPoint from plain fields (time_from_start: ns)."""
     for key, value in fields.items():
         if key == 'time_from_start':
-            point.time_from_start = rospy.Duration.from_sec(value) if isinstance(value, float) \
+            point.time_from_start = (
+                rospy.Duration.from_sec(value)
+                if isinstance(value, float)
                 else rospy.Duration(0, int(value))
+            )
         else:
             setattr(point, key, value)
 
@@ -84,21 +88,35 @@ def duration_ns(d: Any) -> int:
 
 def read_trajectory(msg: Any) -> Dict[str, Any]:
     """trajectory_msgs/JointTrajectory as the core's plain fields (times in ns)."""
-    return dict(stamp=duration_ns(msg.header.stamp), joint_names=list(msg.joint_names),
-                points=[dict(positions=list(p.positions), velocities=list(p.velocities),
-                             accelerations=list(p.accelerations), effort=list(p.effort),
-                             time_from_start=duration_ns(p.time_from_start))
-                        for p in msg.points])
+    return dict(
+        stamp=duration_ns(msg.header.stamp),
+        joint_names=list(msg.joint_names),
+        points=[
+            dict(
+                positions=list(p.positions),
+                velocities=list(p.velocities),
+                accelerations=list(p.accelerations),
+                effort=list(p.effort),
+                time_from_start=duration_ns(p.time_from_start),
+            )
+            for p in msg.points
+        ],
+    )
 
 
 def read_follow_joint_trajectory_goal(goal: Any) -> Dict[str, Any]:
     def tolerances(entries: Any) -> List[Dict[str, Any]]:
-        return [dict(name=t.name, position=t.position, velocity=t.velocity,
-                     acceleration=t.acceleration) for t in entries]
-    return dict(trajectory=read_trajectory(goal.trajectory),
-                path_tolerance=tolerances(goal.path_tolerance),
-                goal_tolerance=tolerances(goal.goal_tolerance),
-                goal_time_tolerance=duration_ns(goal.goal_time_tolerance))
+        return [
+            dict(name=t.name, position=t.position, velocity=t.velocity, acceleration=t.acceleration)
+            for t in entries
+        ]
+
+    return dict(
+        trajectory=read_trajectory(goal.trajectory),
+        path_tolerance=tolerances(goal.path_tolerance),
+        goal_tolerance=tolerances(goal.goal_tolerance),
+        goal_time_tolerance=duration_ns(goal.goal_time_tolerance),
+    )
 
 
 # type name -> (message class, fill(message, core's fields))
@@ -107,8 +125,10 @@ MESSAGES: Dict[str, Tuple[type, Fill]] = {
     'control_msgs/JointControllerState': (JointControllerState, _fill_stamped),
     'std_msgs/Float64': (Float64, _fill_data),
     'std_msgs/Float64MultiArray': (Float64MultiArray, _fill_data),
-    'control_msgs/JointTrajectoryControllerState': (JointTrajectoryControllerState,
-                                                    _fill_trajectory_state),
+    'control_msgs/JointTrajectoryControllerState': (
+        JointTrajectoryControllerState,
+        _fill_trajectory_state,
+    ),
     'trajectory_msgs/JointTrajectory': (JointTrajectory, _fill_stamped),
 }
 # type name -> what a subscriber's callback gets from a message (default: its ``data``)
@@ -120,8 +140,14 @@ READERS: Dict[str, Callable[[Any], Any]] = {
 class RosGoalHandle:
     """control/interfaces.py's GoalHandle over actionlib's ServerGoalHandle."""
 
-    def __init__(self, gh: Any, goal: Dict[str, Any], result_class: type,
-                 feedback_class: type, fill_feedback: Fill) -> None:
+    def __init__(
+        self,
+        gh: Any,
+        goal: Dict[str, Any],
+        result_class: type,
+        feedback_class: type,
+        fill_feedback: Fill,
+    ) -> None:
         self._gh, self.goal = gh, goal
         self.id = gh.get_goal_id().id
         self._result_class, self._feedback_class = result_class, feedback_class
@@ -158,17 +184,29 @@ class _ActionServer:
     """actionlib's ActionServer, withdrawn by unregister(). Its status timer is made anew
     with reset=True: rospy's Timer otherwise dies when sim time jumps back (reset_simulation)."""
 
-    def __init__(self, name: str, type_name: str, on_goal: Callable[[Any], None],
-                 on_cancel: Callable[[Any], None]) -> None:
+    def __init__(
+        self,
+        name: str,
+        type_name: str,
+        on_goal: Callable[[Any], None],
+        on_cancel: Callable[[Any], None],
+    ) -> None:
         import actionlib
+
         spec, goal_reader, result_class, feedback_class, fill_feedback = ACTIONS[type_name]
 
         def wrap(gh: Any) -> RosGoalHandle:
-            return RosGoalHandle(gh, goal_reader(gh.get_goal()), result_class, feedback_class,
-                                 fill_feedback)
+            return RosGoalHandle(
+                gh, goal_reader(gh.get_goal()), result_class, feedback_class, fill_feedback
+            )
 
-        self.server = actionlib.ActionServer(name, spec, lambda gh: on_goal(wrap(gh)),
-                                             lambda gh: on_cancel(wrap(gh)), auto_start=False)
+        self.server = actionlib.ActionServer(
+            name,
+            spec,
+            lambda gh: on_goal(wrap(gh)),
+            lambda gh: on_cancel(wrap(gh)),
+            auto_start=False,
+        )
         self.server.start()
         timer = getattr(self.server, 'status_timer', None)
         if timer is not None:
@@ -207,17 +245,27 @@ def _actions() -> Dict[str, Tuple[Any, Callable[[Any], Any], type, type, Fill]]:
         GripperCommandFeedback,
         GripperCommandResult,
     )
-    return {'control_msgs/FollowJointTrajectory': (
-        FollowJointTrajectoryAction, read_follow_joint_trajectory_goal,
-        FollowJointTrajectoryResult, FollowJointTrajectoryFeedback, _fill_trajectory_state),
+
+    return {
+        'control_msgs/FollowJointTrajectory': (
+            FollowJointTrajectoryAction,
+            read_follow_joint_trajectory_goal,
+            FollowJointTrajectoryResult,
+            FollowJointTrajectoryFeedback,
+            _fill_trajectory_state,
+        ),
         'control_msgs/GripperCommand': (
-        GripperCommandAction, read_gripper_command_goal,
-        GripperCommandResult, GripperCommandFeedback, _fill_fields)}
+            GripperCommandAction,
+            read_gripper_command_goal,
+            GripperCommandResult,
+            GripperCommandFeedback,
+            _fill_fields,
+        ),
+    }
 
 
 def read_gripper_command_goal(goal: Any) -> Dict[str, Any]:
-    return dict(command=dict(position=goal.command.position,
-                             max_effort=goal.command.max_effort))
+    return dict(command=dict(position=goal.command.position, max_effort=goal.command.max_effort))
 
 
 def _fill_fields(msg: Any, fields: Fields) -> None:
@@ -250,8 +298,13 @@ class _Service:
 
 def _services() -> Dict[str, Tuple[Any, Callable[[Any], Fields]]]:
     from control_msgs.srv import QueryTrajectoryState
-    return {'control_msgs/QueryTrajectoryState': (
-        QueryTrajectoryState, lambda req: dict(time=duration_ns(req.time)))}
+
+    return {
+        'control_msgs/QueryTrajectoryState': (
+            QueryTrajectoryState,
+            lambda req: dict(time=duration_ns(req.time)),
+        )
+    }
 
 
 SERVICES = _services()
@@ -260,6 +313,7 @@ SERVICES = _services()
 class _Publisher:
     """Fills one message again for each publish: publishing is synchronous (serialised
     before publish returns), so reuse is safe and spares building a message each time."""
+
     __slots__ = ('pub', 'fill', 'msg')
 
     def __init__(self, pub: rospy.Publisher, msg_class: type, fill: Fill) -> None:
@@ -288,26 +342,38 @@ class RosNodeHandle:
         self._handles.append(pub)
         return _Publisher(pub, cls, fill)
 
-    def subscribe(self, topic: str, type_name: str,
-                  callback: Callable[[Any], object]) -> rospy.Subscriber:
+    def subscribe(
+        self, topic: str, type_name: str, callback: Callable[[Any], object]
+    ) -> rospy.Subscriber:
         cls, _ = MESSAGES[type_name]
         read = READERS.get(type_name, _read_data)
         sub = rospy.Subscriber(self._name(topic), cls, lambda m: callback(read(m)), queue_size=1)
         self._handles.append(sub)
         return sub
 
-    def serve_config(self, namespace: str, type_name: str, current: Dict[str, Any],
-                     on_change: Callable[[Dict[str, Any]], Dict[str, Any]]) -> object:
+    def serve_config(
+        self,
+        namespace: str,
+        type_name: str,
+        current: Dict[str, Any],
+        on_change: Callable[[Dict[str, Any]], Dict[str, Any]],
+    ) -> object:
         """A dynamic_reconfigure server at ``namespace`` (e.g. a controller's ``pid``):
         starts at ``current``; ``on_change(values)`` returns the values in force."""
         from .pid_reconfigure import serve_config
+
         server = serve_config(self._name(namespace), type_name, current, on_change)
         if server is not None:
             self._handles.append(server)
         return server
 
-    def action_server(self, name: str, type_name: str, on_goal: Callable[[Any], None],
-                      on_cancel: Callable[[Any], None]) -> _ActionServer:
+    def action_server(
+        self,
+        name: str,
+        type_name: str,
+        on_goal: Callable[[Any], None],
+        on_cancel: Callable[[Any], None],
+    ) -> _ActionServer:
         server = _ActionServer(self._name(name), type_name, on_goal, on_cancel)
         self._handles.append(server)
         return server
@@ -328,8 +394,15 @@ class RospyLogHandler(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         level = record.levelno
-        log = (rospy.logerr if level >= logging.ERROR else rospy.logwarn if level >= logging.WARNING
-               else rospy.loginfo if level >= logging.INFO else rospy.logdebug)
+        log = (
+            rospy.logerr
+            if level >= logging.ERROR
+            else rospy.logwarn
+            if level >= logging.WARNING
+            else rospy.loginfo
+            if level >= logging.INFO
+            else rospy.logdebug
+        )
         log(self.format(record))
 
 

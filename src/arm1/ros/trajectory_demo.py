@@ -3,6 +3,7 @@
 Run against `roslaunch arm1 gazebo.launch controllers:=trajectory`. The goal is what
 MoveIt sends: header stamp 0 (start at the controller's next update), every joint named.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -17,15 +18,25 @@ from trajectory_msgs.msg import JointTrajectoryPoint
 
 JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
 # (seconds from start, positions): out to one side, to the other, back up.
-WAYPOINTS = [(2.0, [0.6, 0.8, 0.4, 0.3]), (4.0, [-0.6, 0.5, 0.2, -0.2]),
-             (6.0, [0.0, 1.0, 0.0, 0.0])]
-ERRORS = {0: 'SUCCESSFUL', -1: 'INVALID_GOAL', -2: 'INVALID_JOINTS', -3: 'OLD_HEADER_TIMESTAMP',
-          -4: 'PATH_TOLERANCE_VIOLATED', -5: 'GOAL_TOLERANCE_VIOLATED'}
+WAYPOINTS = [
+    (2.0, [0.6, 0.8, 0.4, 0.3]),
+    (4.0, [-0.6, 0.5, 0.2, -0.2]),
+    (6.0, [0.0, 1.0, 0.0, 0.0]),
+]
+ERRORS = {
+    0: 'SUCCESSFUL',
+    -1: 'INVALID_GOAL',
+    -2: 'INVALID_JOINTS',
+    -3: 'OLD_HEADER_TIMESTAMP',
+    -4: 'PATH_TOLERANCE_VIOLATED',
+    -5: 'GOAL_TOLERANCE_VIOLATED',
+}
 STATES = {v: k for k, v in vars(GoalStatus).items() if k.isupper() and isinstance(v, int)}
 
 
-def make_goal(waypoints: Sequence = WAYPOINTS,
-              joints: Sequence[str] = JOINTS) -> FollowJointTrajectoryGoal:
+def make_goal(
+    waypoints: Sequence = WAYPOINTS, joints: Sequence[str] = JOINTS
+) -> FollowJointTrajectoryGoal:
     goal = FollowJointTrajectoryGoal()
     goal.trajectory.joint_names = list(joints)
     for t, positions in waypoints:
@@ -43,8 +54,11 @@ def main(argv: Optional[List[str]] = None) -> int:
     rospy.init_node('trajectory_demo', anonymous=True)
     client = actionlib.SimpleActionClient(args.action, FollowJointTrajectoryAction)
     if not client.wait_for_server(rospy.Duration(args.timeout)):
-        print('trajectory_demo: no action server at %s (is gazebo.launch running with '
-              'controllers:=trajectory?)' % args.action, file=sys.stderr)
+        print(
+            'trajectory_demo: no action server at %s (is gazebo.launch running with '
+            'controllers:=trajectory?)' % args.action,
+            file=sys.stderr,
+        )
         return 2
     goal = make_goal()
     for t, positions in WAYPOINTS:
@@ -56,8 +70,13 @@ def main(argv: Optional[List[str]] = None) -> int:
         return 1
     state, result = client.get_state(), client.get_result()
     code = result.error_code if result is not None else None
-    print('state: %s  error_code: %s (%s)  error_string: %r'
-          % (STATES.get(state, state),
-             code, ERRORS.get(code, '?') if code is not None else '-',
-             result.error_string if result is not None else ''))
+    print(
+        'state: %s  error_code: %s (%s)  error_string: %r'
+        % (
+            STATES.get(state, state),
+            code,
+            ERRORS.get(code, '?') if code is not None else '-',
+            result.error_string if result is not None else '',
+        )
+    )
     return 0 if state == GoalStatus.SUCCEEDED else 1

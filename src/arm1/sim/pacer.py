@@ -1,4 +1,5 @@
 """Paces simulation steps against the wall clock, and measures the real-time factor."""
+
 import time
 
 

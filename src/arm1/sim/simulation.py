@@ -3,6 +3,7 @@
 One ``step`` is what Gazebo does per physics iteration with gazebo_ros_control
 loaded: read the joints, update the controllers, write saturated efforts, step.
 """
+
 from __future__ import annotations
 
 import itertools
@@ -39,6 +40,7 @@ class Plugin(Protocol):
 @dataclass
 class Model:
     """Everything one spawned model brought, so that deleting it is one call."""
+
     name: str
     description: RobotModel
     robot: Robot
@@ -54,6 +56,7 @@ class Model:
 @dataclass
 class PreparedUrdf:
     """A spawn request checked and parsed, not yet in the world."""
+
     name: str
     description: RobotModel
     sensors: List[CameraSensor]
@@ -88,11 +91,17 @@ class Simulation:
         """The only folder the world writes to."""
         return self._tmp.name
 
-    def spawn_urdf(self, name: str, urdf_xml: str, position: Sequence[float] = (0, 0, 0),
-                   orientation: Sequence[float] = (0, 0, 0, 1), robot_namespace: str = '',
-                   find_package: Optional[Callable[[str], str]] = None,
-                   controller_manager_factory: Optional[ControllerManagerFactory] = None,
-                   attach: Optional[Callable[[Model], None]] = None) -> Model:
+    def spawn_urdf(
+        self,
+        name: str,
+        urdf_xml: str,
+        position: Sequence[float] = (0, 0, 0),
+        orientation: Sequence[float] = (0, 0, 0, 1),
+        robot_namespace: str = '',
+        find_package: Optional[Callable[[str], str]] = None,
+        controller_manager_factory: Optional[ControllerManagerFactory] = None,
+        attach: Optional[Callable[[Model], None]] = None,
+    ) -> Model:
         """Build a robot from URDF text; with the control plugin, give it a controller manager.
 
         ``find_package(name)`` resolves ``package://`` URIs; ``controller_manager_factory(hw,
@@ -103,9 +112,14 @@ class Simulation:
         prepared = self.prepare_urdf(name, urdf_xml, position, orientation, find_package)
         return self.spawn_prepared(prepared, robot_namespace, controller_manager_factory, attach)
 
-    def prepare_urdf(self, name: str, urdf_xml: str, position: Sequence[float] = (0, 0, 0),
-                     orientation: Sequence[float] = (0, 0, 0, 1),
-                     find_package: Optional[Callable[[str], str]] = None) -> PreparedUrdf:
+    def prepare_urdf(
+        self,
+        name: str,
+        urdf_xml: str,
+        position: Sequence[float] = (0, 0, 0),
+        orientation: Sequence[float] = (0, 0, 0, 1),
+        find_package: Optional[Callable[[str], str]] = None,
+    ) -> PreparedUrdf:
         """Everything of a spawn that reads only the request: parsing, limits, meshes.
 
         Touches no simulation state, so the ROS layer runs it on the caller's thread and a
@@ -128,12 +142,20 @@ class Simulation:
         path = os.path.join(self._tmp.name, 'model-%d.urdf' % next(self._files))
         with open(path, 'w') as f:
             f.write(resolved)
-        return PreparedUrdf(name, description, sensors, (
-            path, tuple(position), tuple(orientation), description.root_link == 'world'))
+        return PreparedUrdf(
+            name,
+            description,
+            sensors,
+            (path, tuple(position), tuple(orientation), description.root_link == 'world'),
+        )
 
-    def spawn_prepared(self, prepared: PreparedUrdf, robot_namespace: str = '',
-                       controller_manager_factory: Optional[ControllerManagerFactory] = None,
-                       attach: Optional[Callable[[Model], None]] = None) -> Model:
+    def spawn_prepared(
+        self,
+        prepared: PreparedUrdf,
+        robot_namespace: str = '',
+        controller_manager_factory: Optional[ControllerManagerFactory] = None,
+        attach: Optional[Callable[[Model], None]] = None,
+    ) -> Model:
         """The part of a spawn that changes the world (see ``spawn_urdf``). Sim thread only."""
         name = prepared.name
         try:
@@ -155,15 +177,18 @@ class Simulation:
         try:
             self._attach_plugins(model, robot_namespace, controller_manager_factory)
             # As Gazebo's spawn: a sensor plugin without <robotNamespace> gets the request's.
-            sensors = [replace(c, robot_namespace=c.robot_namespace or robot_namespace)
-                       for c in prepared.sensors]
+            sensors = [
+                replace(c, robot_namespace=c.robot_namespace or robot_namespace)
+                for c in prepared.sensors
+            ]
             model.cameras = self.sensors.add_robot(name, prepared.load_args, sensors)
             if attach is not None:
                 attach(model)
             plugin, manager = model.description.control_plugin, model.controller_manager
             if plugin and model.hw and manager and model not in self._controlled:
-                model.control = ControlLoop(model.hw, manager, control_period_ns(
-                    plugin.control_period, self.step_ns, name))
+                model.control = ControlLoop(
+                    model.hw, manager, control_period_ns(plugin.control_period, self.step_ns, name)
+                )
                 self._controlled.append(model)
         except (UrdfError, LimitError, SpawnError) as exc:
             self._release(model)
@@ -174,8 +199,9 @@ class Simulation:
         self.models[name] = model
         return model
 
-    def _attach_plugins(self, model: Model, robot_namespace: str,
-                        factory: Optional[ControllerManagerFactory]) -> None:
+    def _attach_plugins(
+        self, model: Model, robot_namespace: str, factory: Optional[ControllerManagerFactory]
+    ) -> None:
         plugin = model.description.control_plugin
         if plugin is None:
             return
@@ -207,18 +233,22 @@ class Simulation:
         self._release(model)
         return model
 
-    def set_model_configuration(self, name: str, joint_names: Sequence[str],
-                                positions: Sequence[float]) -> None:
+    def set_model_configuration(
+        self, name: str, joint_names: Sequence[str], positions: Sequence[float]
+    ) -> None:
         model = self.models.get(name)
         if model is None:
             raise SpawnError("model '%s' does not exist" % name)
         if len(joint_names) != len(positions):
-            raise SpawnError('joint_names lists %d joint(s) but joint_positions has %d value(s)'
-                             % (len(joint_names), len(positions)))
+            raise SpawnError(
+                'joint_names lists %d joint(s) but joint_positions has %d value(s)'
+                % (len(joint_names), len(positions))
+            )
         unknown = [j for j in joint_names if j not in model.robot.joint_index]
         if unknown:
-            raise SpawnError("model '%s' has no joint(s) %s"
-                             % (name, ', '.join(shown(j) for j in unknown[:10])))
+            raise SpawnError(
+                "model '%s' has no joint(s) %s" % (name, ', '.join(shown(j) for j in unknown[:10]))
+            )
         bad = [j for j, v in zip(joint_names, positions) if not math.isfinite(v)]
         if bad:
             raise SpawnError('non-finite position for joint(s) %s' % ', '.join(bad))

@@ -7,6 +7,7 @@ on the server); ``publish(topic, value)`` delivers to subscribers at once; the l
 message of each advertised topic is kept (and every message, for topics asked for
 with ``record``).
 """
+
 from __future__ import annotations
 
 from typing import Any, Callable, Dict, List, Optional, Tuple
@@ -32,8 +33,9 @@ class LocalGoalHandle:
         self.status, self.result = status, result
 
     def accept(self) -> None:
-        self._end(('PENDING', 'RECALLING'), 'ACTIVE' if self.status == 'PENDING'
-                  else 'PREEMPTING', {})
+        self._end(
+            ('PENDING', 'RECALLING'), 'ACTIVE' if self.status == 'PENDING' else 'PREEMPTING', {}
+        )
         self.result = None
 
     def reject(self, result: Fields) -> None:
@@ -46,8 +48,11 @@ class LocalGoalHandle:
         self._end(('ACTIVE', 'PREEMPTING'), 'ABORTED', result)
 
     def cancel(self, result: Fields) -> None:
-        self._end(('PENDING', 'RECALLING', 'ACTIVE', 'PREEMPTING'),
-                  'RECALLED' if self.status in ('PENDING', 'RECALLING') else 'PREEMPTED', result)
+        self._end(
+            ('PENDING', 'RECALLING', 'ACTIVE', 'PREEMPTING'),
+            'RECALLED' if self.status in ('PENDING', 'RECALLING') else 'PREEMPTED',
+            result,
+        )
 
     def publish_feedback(self, fields: Fields) -> None:
         self.feedback.append(fields)
@@ -56,8 +61,9 @@ class LocalGoalHandle:
 class LocalActionServer:
     """actionlib's ActionServer in-process: ``send_goal`` and ``cancel`` play the client."""
 
-    def __init__(self, name: str, type_name: str, on_goal: GoalCallback,
-                 on_cancel: GoalCallback) -> None:
+    def __init__(
+        self, name: str, type_name: str, on_goal: GoalCallback, on_cancel: GoalCallback
+    ) -> None:
         self.name, self.type_name = name, type_name
         self.on_goal, self.on_cancel = on_goal, on_cancel
         self.goals: List[LocalGoalHandle] = []
@@ -107,15 +113,17 @@ class LocalNodeHandle:
         self._subscriptions.append((name, callback))
         return callback
 
-    def action_server(self, name: str, type_name: str, on_goal: GoalCallback,
-                      on_cancel: GoalCallback) -> LocalActionServer:
+    def action_server(
+        self, name: str, type_name: str, on_goal: GoalCallback, on_cancel: GoalCallback
+    ) -> LocalActionServer:
         server = LocalActionServer(self.resolve(name), type_name, on_goal, on_cancel)
         self.ros.action_servers[server.name] = server
         self._servers.append(server.name)
         return server
 
-    def serve(self, name: str, type_name: str,
-              handler: Callable[[Fields], Fields]) -> Callable[[Fields], Fields]:
+    def serve(
+        self, name: str, type_name: str, handler: Callable[[Fields], Fields]
+    ) -> Callable[[Fields], Fields]:
         self.ros.services[self.resolve(name)] = handler
         self._servers.append(self.resolve(name))
         return handler
