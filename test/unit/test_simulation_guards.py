@@ -215,3 +215,19 @@ def test_a_base_link_with_an_offset_centre_of_mass_is_posed_and_reset_by_its_fra
         assert model.robot.link_pose('plank')[0] == pytest.approx((1.0, 2.0, 0.5), abs=1e-6)
     finally:
         s.close()
+
+
+def test_a_free_body_keeps_its_speed_as_in_gazebo_no_velocity_damping():
+    import pybullet as p
+
+    s = Simulation(WorldConfig(gravity=(0.0, 0.0, 0.0)))
+    try:
+        model = s.spawn_urdf('crate', CRATE, position=(0, 0, 1.0))
+        body, cid = model.robot.body, model.robot.client
+        p.resetBaseVelocity(body, (1.0, 0, 0), (0, 0, 0.5), physicsClientId=cid)
+        run(s, 1000)  # one second
+        linear, angular = p.getBaseVelocity(body, physicsClientId=cid)
+        assert linear[0] == pytest.approx(1.0, abs=1e-6)
+        assert angular[2] == pytest.approx(0.5, abs=1e-6)
+    finally:
+        s.close()

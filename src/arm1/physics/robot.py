@@ -31,14 +31,17 @@ class Robot:
         self._base_from_com = p.invertTransform(*inertial)
         self.joint_index = {}
         self.link_index = {p.getBodyInfo(self.body, physicsClientId=client)[0].decode(): -1}
-        for i in range(p.getNumJoints(self.body, physicsClientId=client)):
-            info = p.getJointInfo(self.body, i, physicsClientId=client)
-            self.joint_index[info[1].decode()] = i
-            self.link_index[info[12].decode()] = i
-            # Gazebo has no velocity damping: pybullet's default 0.04 would add some.
+        # Gazebo has no velocity damping: pybullet's default 0.04 would add some, to the base
+        # (a free box slows down by itself) as to every link.
+        for i in range(-1, p.getNumJoints(self.body, physicsClientId=client)):
             p.changeDynamics(
                 self.body, i, linearDamping=0, angularDamping=0, physicsClientId=client
             )
+            if i < 0:
+                continue
+            info = p.getJointInfo(self.body, i, physicsClientId=client)
+            self.joint_index[info[1].decode()] = i
+            self.link_index[info[12].decode()] = i
         movable = [
             i
             for i in self.joint_index.values()
