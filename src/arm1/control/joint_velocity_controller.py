@@ -53,22 +53,8 @@ class JointVelocityController(JointPositionController):
         effort = self.pid.compute_command(error, dt)
         self.joint.command = effort
         if self._loop_count % STATE_PUBLISH_DIVIDER == 0:
-            pid = self.pid
-            # Upstream leaves process_value_dot unset (0).
-            self._state_pub.publish(
-                dict(
-                    stamp=time_ns,
-                    set_point=self.target,
-                    process_value=self.joint.velocity,
-                    process_value_dot=0.0,
-                    error=error,
-                    time_step=dt,
-                    command=effort,
-                    p=pid.p,
-                    i=pid.i,
-                    d=pid.d,
-                    i_clamp=pid.i_max,
-                    antiwindup=pid.antiwindup,
-                )
-            )
+            state = self._state(time_ns, self.target, error, dt, effort)
+            # The process value is the velocity; upstream leaves process_value_dot unset (0).
+            state.update(process_value=self.joint.velocity, process_value_dot=0.0)
+            self._state_pub.publish(state)
         self._loop_count += 1
