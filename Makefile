@@ -34,14 +34,16 @@ APT_PACKAGES := \
   ros-sensor-msgs libsensor-msgs-dev ros-std-srvs libstd-srvs-dev \
   ros-rosgraph-msgs libros-rosgraph-msgs-dev \
   ros-trajectory-msgs libtrajectory-msgs-dev ros-actionlib-msgs libactionlib-msgs-dev \
+  python3-nav-msgs ros-nav-msgs libnav-msgs-dev python3-tf2-msgs ros-tf2-msgs \
   python3-dynamic-reconfigure libdynamic-reconfigure-config-init-mutex-dev \
   ros-message-generation ros-message-runtime \
   python3-rosservice python3-rostopic python3-rosparam python3-rosnode \
   python3-rosmsg python3-rosbag rospack-tools python3-rosmaster python3-rospkg \
-  python3-catkin-pkg \
+  python3-catkin-pkg libroscpp-dev liburdf-dev \
   python3-venv python3-pip python3-numpy python3-yaml python3-psutil python3-defusedxml python3-tqdm python3-pil \
   cmake make g++ xvfb \
-  rviz joint-state-publisher-gui libgl1-mesa-dri libglx-mesa0
+  rviz joint-state-publisher-gui libgl1-mesa-dri libglx-mesa0 \
+  libegl1 libegl-mesa0 libgl1 libgles2
 
 # A change to any of these rebuilds the workspace (python modules under
 # src/arm1 need no rebuild: the devel space imports them from src/).

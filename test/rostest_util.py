@@ -6,6 +6,8 @@ import unittest
 
 import rospy
 from controller_manager_msgs.srv import ListControllers
+from gazebo_msgs.srv import SpawnModel
+from geometry_msgs.msg import Point, Pose, Quaternion
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState
 
@@ -114,3 +116,20 @@ class WorldTestCase(unittest.TestCase):
             assert wait_for(lambda: recorder.last() is not None, timeout), 'no ' + what
         if cls.CONTROLLERS:
             cls.list_controllers = wait_for_controllers(cls.CONTROLLERS)
+
+
+class SpawningTestCase(WorldTestCase):
+    """A WorldTestCase in sim time that spawns its models (``spawn_urdf``) in setUpClass."""
+
+    RECORD = ('clock',)
+    FIRST = ('clock',)
+    SERVICES = ('/gazebo/spawn_urdf_model',)
+
+
+def spawn_urdf(name, xml, namespace, position):
+    """Spawns a URDF model unrotated at ``position`` (x, y, z) in the world frame; asserts
+    the world took it."""
+    spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
+    pose = Pose(Point(*position), Quaternion(0, 0, 0, 1))
+    res = spawn(name, xml, namespace, pose, 'world')
+    assert res.success, res.status_message

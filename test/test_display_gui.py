@@ -40,11 +40,21 @@ class DisplayGui(unittest.TestCase):
 
         last = []
 
-        def arm_drawn():
-            last[:] = [self.display.screen()]
-            return orange(last[0]).sum() > 300
+        def arm_drawn_and_settled():
+            # RViz draws the model before its layout settles (panels still moving the 3D
+            # view): judge a screenshot only once the arm looks the same in two in a row.
+            rgb = self.display.screen()
+            mask = orange(rgb)
+            seen = (int(mask.sum()), float(np.nonzero(mask)[1].mean()) if mask.any() else 0.0)
+            previous = last[1] if last else (0, 0.0)
+            last[:] = [rgb, seen]
+            return (
+                seen[0] > 300
+                and abs(seen[0] - previous[0]) <= 0.02 * seen[0]
+                and abs(seen[1] - previous[1]) <= 5
+            )
 
-        drawn = wait_for(arm_drawn, 30, poll=0.5)
+        drawn = wait_for(arm_drawn_and_settled, 45, poll=1.0)
         rgb = last[0]
         shot = self.display.save(rgb, 'arm1_rviz_screenshot.png')
         print('screenshot: %s' % shot)

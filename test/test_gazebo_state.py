@@ -21,12 +21,17 @@ from gazebo_msgs.srv import (
     GetWorldProperties,
     SetLinkState,
     SetModelState,
-    SpawnModel,
 )
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import Recorder, WorldTestCase, sim_wait, wait_for  # noqa: E402
+from rostest_util import (  # noqa: E402
+    Recorder,
+    SpawningTestCase,
+    sim_wait,
+    spawn_urdf,
+    wait_for,
+)
 
 BOX = """<robot name="box"><link name="body">
   <inertial><mass value="0.5"/><inertia ixx="0.00083" ixy="0" ixz="0" iyy="0.00083" iyz="0"
@@ -45,18 +50,13 @@ def xyz(p):
     return (p.x, p.y, p.z)
 
 
-class GazeboState(WorldTestCase):
+class GazeboState(SpawningTestCase):
     NODE = 'test_gazebo_state'
-    RECORD = ('clock',)
-    FIRST = ('clock',)
-    SERVICES = ('/gazebo/spawn_urdf_model',)
 
     @classmethod
     def setUpClass(cls):
         super().setUpClass()
-        spawn = proxy('spawn_urdf_model', SpawnModel)
-        res = spawn('box', BOX, '', Pose(Point(1, 0, 0.05), Quaternion(0, 0, 0, 1)), 'world')
-        assert res.success, res.status_message
+        spawn_urdf('box', BOX, '', (1, 0, 0.05))
         cls.get_state = proxy('get_model_state', GetModelState)
         cls.set_state = proxy('set_model_state', SetModelState)
 

@@ -84,17 +84,30 @@ class PauseReset(WorldTestCase):
         self.assertTrue(self.joint1_at(-1.0))
         # Paused, so that every joint_states from before the reset has arrived.
         call('/gazebo/pause_physics')
-        time.sleep(0.3)
-        before = self.states.last().header.stamp
+        stamps = []
+
+        def settled():  # every joint_states from before the pause has arrived (slow machines)
+            stamps.append(self.states.last().header.stamp)
+            return len(stamps) > 3 and stamps[-1] == stamps[-4]
+
+        self.assertTrue(wait_for(settled, 10, poll=0.1), 'joint_states went on while paused')
+        before = stamps[-1]
+        mark = time.monotonic()
         call('/gazebo/reset_world')
         call('/gazebo/unpause_physics')
 
         def after():
-            return [m for m in self.states.since(0) if m.header.stamp > before]
+            return [m for m in self.states.since(mark) if m.header.stamp > before]
 
         self.assertTrue(wait_for(after, 10), 'no joint_states after reset_world')
         first = after()[0]
+        # Time goes on from where it stopped: one joint_states period (20 ms) later, not 0.
         self.assertLess((first.header.stamp - before).to_sec(), 0.1, 'reset_world reset time')
+        self.assertEqual(
+            [m.header.stamp for m in self.states.since(mark) if m.header.stamp < before],
+            [],
+            'joint_states went back in time after reset_world',
+        )
         # At zero angles link4 touches the ground plane, so the arm is kicked within the
         # 20 ms before joint_states go out: it is far from where it was, not exactly at zero.
         self.assertGreater(positions(first)['joint1'] - (-1.0), 0.5, positions(first))

@@ -34,7 +34,13 @@ class Resources(WorldTestCase):
     def test_02_controller_manager_is_at_the_root_namespace(self):
         name = '/controller_manager/list_controllers'
         rospy.wait_for_service(name, 60)
-        names = [c.name for c in rospy.ServiceProxy(name, ListControllers)().controller]
+        names = []
+
+        def loaded():  # the service is up before the spawner has loaded the controller
+            names[:] = [c.name for c in rospy.ServiceProxy(name, ListControllers)().controller]
+            return bool(names)
+
+        wait_for(loaded, 30)
         self.assertEqual(names, ['joint_state_controller'])
         self.assertNotIn('/res_bot/controller_manager/list_controllers', get_service_list())
 

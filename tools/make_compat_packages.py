@@ -30,15 +30,20 @@ PACKAGE_XML = '''<?xml version="1.0"?>
   <maintainer email="arm1@example.invalid">arm1 developers</maintainer>
   <license>BSD</license>
   <buildtool_depend>catkin</buildtool_depend>
-  <exec_depend>arm1</exec_depend>
+{depends}  <exec_depend>arm1</exec_depend>
 </package>
 '''
 
 CMAKELISTS = '''cmake_minimum_required(VERSION 3.12)
 project({name})
-find_package(catkin REQUIRED)
-catkin_package()
+find_package(catkin REQUIRED{components})
+catkin_package({exports})
 '''
+
+# Catkin packages upstream's exports carry (catkin_package CATKIN_DEPENDS): a robot package
+# that finds controller_manager or gazebo_ros and links ${catkin_LIBRARIES} gets roscpp
+# through them, as RoboND simple_arm's C++ nodes do.
+CATKIN_DEPENDS = {'gazebo_ros': ['roscpp'], 'controller_manager': ['roscpp']}
 
 # The venv's python (pybullet, PyPI xacro) even where PATH's python is another one, e.g.
 # Debian rostest's bin hook, which puts /usr/bin/python3 first as `python`.
@@ -61,7 +66,7 @@ EMPTY_WORLD_ARGS = [
     ('debug', 'false'),
     ('verbose', 'false'),
     ('physics', 'ode'),
-    ('world_name', ''),
+    ('world_name', 'worlds/empty.world'),  # upstream's: Gazebo's ground plane and sun
     ('respawn_gazebo', 'false'),
     ('output', 'screen'),
     ('pub_clock_frequency', '100'),
@@ -77,8 +82,9 @@ PACKAGES = {
         {'spawn_model': 'arm1.ros.spawn_model', 'gzserver': 'arm1.ros.world_node'},
     ),
     'controller_manager': (
-        "Stand-in for controller_manager's spawner, backed by arm1's controller managers.",
-        {'spawner': 'arm1.ros.spawner'},
+        "Stand-in for controller_manager's spawner and controller_manager tool, backed by "
+        "arm1's controller managers.",
+        {'spawner': 'arm1.ros.spawner', 'controller_manager': 'arm1.ros.controller_manager_cli'},
     ),
     'xacro': (
         'Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '
@@ -167,11 +173,23 @@ def make(dest: str) -> None:
         make_msg_package(dest, name, version, deps)
     for name, (description, executables) in PACKAGES.items():
         root = os.path.join(dest, name)
+        deps = CATKIN_DEPENDS.get(name, [])
         write(
             os.path.join(root, 'package.xml'),
-            PACKAGE_XML.format(name=name, description=description),
+            PACKAGE_XML.format(
+                name=name,
+                description=description,
+                depends=''.join('  <depend>%s</depend>\n' % d for d in deps),
+            ),
         )
-        write(os.path.join(root, 'CMakeLists.txt'), CMAKELISTS.format(name=name))
+        write(
+            os.path.join(root, 'CMakeLists.txt'),
+            CMAKELISTS.format(
+                name=name,
+                components=' COMPONENTS ' + ' '.join(deps) if deps else '',
+                exports='CATKIN_DEPENDS ' + ' '.join(deps) if deps else '',
+            ),
+        )
         for exe, module in executables.items():
             # $(find xacro)/xacro: ROS 1 xacro kept its script at the package's top.
             path = (

@@ -33,6 +33,8 @@ def robot(namespace):
         (None, '/ur', '/ur'),  # a spawn_model started in namespace /ur
         (None, '', '/nb'),  # a direct service call with no namespace: the model name
         ('/mine', '/', '/mine'),  # the plugin's own value wins over the request's
+        ('', '/ur', '/'),  # an empty <robotNamespace/> is the root, whatever the request
+        ('', '', '/'),  # ... and not the model name either
     ],
 )
 def test_namespace_of_the_controller_manager(plugin_ns, request_ns, expected):

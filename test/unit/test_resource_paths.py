@@ -132,7 +132,8 @@ def test_include_name_pose_and_static_override_the_models(tmp_path):
     )
     paths = gazebo_paths({'GAZEBO_MODEL_PATH': str(tmp_path)})
     cfg = read_world(str(tmp_path / 'w.world'), paths.find_model)
-    assert [(m.name, m.pose) for m in cfg.models] == [('crate_2', (1.0, 2.0, 3.0, 0, 0, 0))]
+    # <include><pose> replaces the model's own <pose> (z=5), as in Gazebo
+    assert [(m.name, m.position) for m in cfg.spawns] == [('crate_2', (1.0, 2.0, 3.0))]
 
 
 def test_unknown_include_is_skipped_naming_the_paths(tmp_path):

@@ -1,9 +1,12 @@
 """physics/sdf_world.py: what a Gazebo world file gives the pybullet world."""
 
+import xml.etree.ElementTree as ET
+
 import pytest
 from conftest import WORLD_FILE
 
 from arm1.description.limits import Limits
+from arm1.description.resource_paths import ResourcePaths
 from arm1.description.sdf_world import SdfError, WorldConfig, parse_world, read_world
 
 
@@ -59,7 +62,7 @@ def test_include_is_skipped_with_its_name_or_uri():
     assert all('cannot fetch' in why for _, why in cfg.skipped)
 
 
-def test_static_primitive_models_are_built_and_poses_added():
+def test_static_primitive_models_become_fixed_base_urdf_spawns_with_their_poses():
     cfg = parse_world(
         world("""
       <model name="block"><static>true</static><pose>1 2 0 0 0 0</pose>
@@ -72,30 +75,81 @@ def test_static_primitive_models_are_built_and_poses_added():
             </cylinder></geometry></collision>
         </link></model>""")
     )
-    m = cfg.models[0]
-    assert m.name == 'block' and m.pose == (1.0, 2.0, 0.0, 0.0, 0.0, 0.0)
-    assert [(s.kind, s.size) for s in m.shapes] == [
-        ('box', (1.0, 2.0, 3.0)),
-        ('sphere', (0.2,)),
-        ('cylinder', (0.1, 0.4)),
-    ]
-    assert m.shapes[0].pose[:3] == pytest.approx((0.1, 0.0, 0.5))
+    assert cfg.models == [] and cfg.skipped == []
+    (spawn,) = cfg.spawns
+    assert spawn.name == 'block' and spawn.position == pytest.approx((1.0, 2.0, 0.0))
+    robot = ET.fromstring(spawn.urdf)
+    assert robot.get('name') == 'block'
+    assert [link.get('name') for link in robot.findall('link')] == ['world', 'l']
+    (joint,) = robot.findall('joint')
+    assert joint.get('type') == 'fixed' and joint.find('parent').get('link') == 'world'
+    assert joint.find('origin').get('xyz') == '0 0 0.5'
+    sizes = [c.find('geometry')[0].attrib for c in robot.iter('collision')]
+    assert sizes == [{'size': '1.0 2.0 3.0'}, {'radius': '0.2'}, {'radius': '0.1', 'length': '0.4'}]
+    assert robot.find('link/collision/origin').get('xyz') == '0.1 0 0'
 
 
-def test_unbuildable_models_are_skipped_with_a_reason():
+def test_plane_only_static_models_stay_scenery():
+    cfg = parse_world(
+        world("""
+      <model name="floor"><static>true</static><link name="l"><collision name="c">
+        <geometry><plane><normal>0 0 1</normal><size>10 10</size></plane></geometry>
+      </collision></link></model>""")
+    )
+    assert [(m.name, m.shapes[0].kind) for m in cfg.models] == [('floor', 'plane')]
+    assert cfg.spawns == []
+
+
+def test_dynamic_models_are_built_and_unbuildable_ones_skipped_with_a_reason():
     cfg = parse_world(
         world("""
       <model name="dynamic_box"><link name="l"><collision name="c">
         <geometry><box><size>1 1 1</size></box></geometry></collision></link></model>
       <model name="meshy"><static>1</static><link name="l"><collision name="c">
         <geometry><mesh><uri>model://x/m.dae</uri></mesh></geometry></collision></link></model>
-      <model name="ghost"><static>true</static><link name="l"/></model>""")
+      <model name="ghost"><static>true</static><link name="l"/></model>
+      <model name="nolinks"><static>true</static></model>
+      <model name="blob"><link name="l"><collision name="c">
+        <geometry><heightmap/></geometry></collision></link></model>""")
     )
-    assert cfg.models == []
+    assert [s.name for s in cfg.spawns] == ['dynamic_box', 'ghost']
+    dynamic = ET.fromstring(cfg.spawns[0].urdf)
+    assert [link.get('name') for link in dynamic.findall('link')] == ['l']  # free: no world
     reasons = dict(cfg.skipped)
-    assert 'static' in reasons['dynamic_box']
-    assert 'geometry' in reasons['meshy']
-    assert 'no collision' in reasons['ghost']
+    assert set(reasons) == {'meshy', 'nolinks', 'blob'}
+    assert 'model://x/m.dae' in reasons['meshy']
+    assert 'no <link>' in reasons['nolinks']
+    assert 'heightmap' in reasons['blob'] and "'c'" in reasons['blob']
+
+
+def test_include_of_a_model_on_the_model_path_is_built_with_its_mesh(tmp_path):
+    folder = tmp_path / 'mug'
+    (folder / 'meshes').mkdir(parents=True)
+    (folder / 'meshes' / 'mug.stl').write_bytes(b'')
+    (folder / 'model.sdf').write_text(
+        '<sdf version="1.6"><model name="mug"><pose>0 0 1 0 0 0</pose><link name="body">'
+        '<collision name="c"><geometry><mesh><uri>model://mug/meshes/mug.stl</uri>'
+        '<scale>0.1 0.1 0.1</scale></mesh></geometry></collision>'
+        '<visual name="v"><geometry><mesh><uri>meshes/mug.stl</uri></mesh></geometry></visual>'
+        '</link></model></sdf>'
+    )
+    paths = ResourcePaths([], [str(tmp_path)])
+    cfg = parse_world(
+        world("""
+      <include><uri>model://mug</uri><name>cup</name><pose>2 0 0 0 0 0</pose></include>
+      <include><uri>model://nowhere</uri></include>"""),
+        find_model=paths.find_model,
+    )
+    (spawn,) = cfg.spawns
+    assert spawn.name == 'cup' and spawn.position == pytest.approx((2.0, 0.0, 0.0))
+    meshes = [m.attrib for m in ET.fromstring(spawn.urdf).iter('mesh')]
+    path = str(folder / 'meshes' / 'mug.stl')
+    assert meshes == [
+        {'filename': path, 'scale': '1.0 1.0 1.0'},
+        {'filename': path, 'scale': '0.1 0.1 0.1'},
+    ]
+    ((name, why),) = cfg.skipped
+    assert name == 'model://nowhere' and 'not found' in why
 
 
 def test_malformed_xml_names_the_source_and_the_parser_message():

@@ -118,7 +118,9 @@ def test_no_plugin_and_plugin_without_namespace():
     assert parse_urdf(robot(TWO_LINKS)).control_plugin is None
     m = parse_urdf(robot(TWO_LINKS + control_plugin(None)))
     assert m.control_plugin is not None
-    assert m.control_plugin.robot_namespace == ''
+    assert m.control_plugin.robot_namespace is None  # absent, unlike <robotNamespace/>
+    empty = parse_urdf(robot(TWO_LINKS + control_plugin('')))
+    assert empty.control_plugin.robot_namespace == ''
 
 
 def test_control_period():

@@ -35,7 +35,16 @@ PLAN = [
     ('standin_2', 'standin', ['--seconds', '4', '--arms', '2'], 3, None, 0),
     ('standin_4', 'standin', ['--seconds', '4', '--arms', '4'], 3, None, 0),
     ('standin_8', 'standin', ['--seconds', '4', '--arms', '8'], 3, None, 0),
+    ('standin_16', 'standin', ['--seconds', '4', '--arms', '16'], 3, None, 0),
     ('standin_camera', 'standin', ['--seconds', '6', '--arms', '1', '--camera'], 3, None, 0),
+    (
+        'standin_model_states',
+        'standin',
+        ['--seconds', '5', '--arms', '1', '--model-states'],
+        3,
+        ['--seconds', '1.5', '--arms', '1', '--model-states'],
+        1,
+    ),
     (
         'standin_trajectory',
         'standin',
@@ -44,12 +53,17 @@ PLAN = [
         ['--seconds', '1.5', '--arms', '1', '--trajectory'],
         1,
     ),
+    ('render', 'render', ['--count', '30'], 3, ['--count', '2'], 1),
+    ('laser', 'laser', ['--count', '300'], 3, ['--count', '10'], 1),
+    ('depth_camera', 'depth', ['--count', '60'], 3, ['--count', '3'], 1),
     ('profile', 'standin', ['--seconds', '4', '--arms', '1', '--profile'], 1, None, 0),
     ('latency', 'latency', ['--commands', '1000'], 3, ['--commands', '100'], 1),
     ('startup', 'startup', [], 5, [], 1),
+    ('seed_goal', 'seed_goal', ['--seconds', '20'], 3, ['--seconds', '3'], 1),
     ('realtime', 'realtime', ['--seconds', '60'], 3, ['--seconds', '4'], 1),
     ('idle_world', 'idle_world', ['--seconds', '20'], 3, None, 0),
 ]
+SCALING_ARMS = (2, 4, 8, 16)
 NEEDS_MASTER = {'standin', 'latency'}  # they run the world in-process against a shared master
 
 
@@ -132,6 +146,13 @@ def figures(raw: Raw) -> Dict[str, Dict[str, Any]]:
     fig: Dict[str, Dict[str, Any]] = {key: summarise(samples) for key, samples in raw.items()}
     one = fig['standin_1']['steps_per_s']['median']
     fig['speed_ratio'] = {'median': one / fig['bare']['steps_per_s']['median']}
+    for n in SCALING_ARMS:  # N arms' steps in a second (each arm steps) over one arm's
+        if 'standin_%d' % n in fig:
+            many = fig['standin_%d' % n]['steps_per_s']['median']
+            fig['scaling_%d' % n] = {'median': n * many / one}
+    if 'standin_model_states' in fig:  # gathering the states before each step, at top speed
+        states = fig['standin_model_states']['steps_per_s']['median']
+        fig['model_states_us'] = {'median': (1e6 / states - 1e6 / one)}
     if 'standin_camera' in fig:  # wall time a 30 Hz frame adds to each simulated second
         cam = fig['standin_camera']['steps_per_s']['median']
         fig['camera_frame_ms'] = {'median': (1000.0 / cam - 1000.0 / one) / 30 * 1000}
@@ -152,7 +173,21 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or '').splitlines()[0])
     parser.add_argument('--quick', action='store_true', help='one short run of each (smoke)')
     parser.add_argument('--out', default=repo_root(), help='where bench/ and BENCHMARKS.md go')
+    parser.add_argument(
+        '--only',
+        metavar='KEY[,KEY...]',
+        help='run only these measurements (keys of PLAN, e.g. bare,standin_1,latency) and '
+        'print their summary; nothing is written',
+    )
     args = parser.parse_args(argv)
+    if args.only:
+        keys = args.only.split(',')
+        unknown = [k for k in keys if k not in {row[0] for row in PLAN}]
+        if unknown:
+            parser.error('unknown key(s) %s; known: %s' % (unknown, [row[0] for row in PLAN]))
+        raw = run_plan([row for row in plan_for(args.quick) if row[0] in keys])
+        print(json.dumps({k: summarise(v) for k, v in raw.items()}, indent=1))
+        return 0
     raw = run_plan(plan_for(args.quick))
     results = {'machine': machine(), 'quick': args.quick, 'figures': figures(raw), 'raw': raw}
     print(write_results(results, args.out))

@@ -77,3 +77,67 @@ def realtime(seconds: float) -> Dict[str, float]:
         'peak_rss_mb': rss,
         'seconds': w1 - w0,
     }
+
+
+def _role(proc: Any) -> str:
+    """What a process of robot_spawn.launch is, for the CPU split."""
+    cmd = ' '.join(proc.cmdline())
+    for role, marks in (
+        ('render processes', ('render_process', 'multiprocessing')),
+        ('world (gzserver)', ('gzserver',)),
+        ('look_away', ('look_away',)),
+        ('arm_mover', ('arm_mover',)),
+        ('robot_state_publisher', ('robot_state_publisher',)),
+        ('spawner', ('spawner',)),
+        ('rosmaster and rosout', ('rosmaster', 'rosout')),
+        ('roslaunch', ('roslaunch',)),
+    ):
+        if any(m in cmd for m in marks):
+            return role
+    return 'other'
+
+
+def seed_goal(seconds: float) -> Dict[str, Any]:
+    """``roslaunch arm1 robot_spawn.launch gui:=false`` (the world, arm1 and its camera,
+    arm_mover, look_away watching the camera) at real time: CPU of every process the launch
+    started, master included, over ``seconds`` after the camera is streaming."""
+    import psutil
+    import rospy
+
+    from ..session.launcher import RosSession
+
+    session = RosSession()
+    session.activate()
+    with session:
+        launch = session.roslaunch('arm1', 'robot_spawn.launch', 'gui:=false')
+        if not session.wait_for_master(60):
+            raise RuntimeError('master did not start')
+        rospy.init_node(PROBE.lstrip('/'), anonymous=True, disable_signals=True)
+        rospy.wait_for_message('/arm1/joint_states', rospy.AnyMsg, timeout=60)
+        time.sleep(5.0)  # look_away subscribed, render processes up, spawner gone
+        root = psutil.Process(launch.pid)
+        procs = [root] + root.children(recursive=True)
+        before = {p.pid: _cpu(p) for p in procs}
+        w0 = time.perf_counter()
+        time.sleep(seconds)
+        wall = time.perf_counter() - w0
+        split: Dict[str, float] = {}
+        for p in procs:
+            used = max(0.0, _cpu(p) - before[p.pid])  # 0: it ended meanwhile
+            split[_role(p)] = split.get(_role(p), 0.0) + used / wall
+        rospy.signal_shutdown('measured')
+    main = {'world (gzserver)': 'cpu_world', 'render processes': 'cpu_render'}
+    main['look_away'] = 'cpu_look_away'
+    out: Dict[str, Any] = {key: split.pop(role, 0.0) for role, key in main.items()}
+    out['cpu_rest'] = sum(split.values())
+    out['cpu_core_fraction'] = sum(v for k, v in out.items() if k.startswith('cpu_'))
+    out['seconds'] = wall
+    return out
+
+
+def _cpu(proc: Any) -> float:
+    try:
+        t = proc.cpu_times()
+    except Exception:  # gone (the spawner ends): its CPU no longer counts
+        return 0.0
+    return float(t.user + t.system)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import platform
 import time
 from typing import Dict, Iterable
@@ -43,7 +44,7 @@ def cpu_model() -> str:
 
 
 def machine() -> Dict[str, object]:
-    """CPU, cores, Python, kernel, pybullet and date, for the report's header."""
+    """CPU, cores, Python, kernel, pybullet, date and load, for the report's header."""
     import pybullet
 
     return {
@@ -53,4 +54,7 @@ def machine() -> Dict[str, object]:
         'kernel': platform.release(),
         'pybullet': getattr(pybullet, '__version__', '3.2.7'),
         'date': time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime()),
+        # Other work on a shared machine colours every figure: the 1, 5 and 15 min load
+        # averages as the run ends (the 15 min one spans most of it).
+        'load_average': list(os.getloadavg()),
     }

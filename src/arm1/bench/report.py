@@ -69,6 +69,7 @@ ROWS = [
     ('stand-in top speed, 2 arms (steps/s)', 'standin_2', 'steps_per_s', '', None, '%.0f'),
     ('stand-in top speed, 4 arms (steps/s)', 'standin_4', 'steps_per_s', '', None, '%.0f'),
     ('stand-in top speed, 8 arms (steps/s)', 'standin_8', 'steps_per_s', '', None, '%.0f'),
+    ('stand-in top speed, 16 arms (steps/s)', 'standin_16', 'steps_per_s', '', None, '%.0f'),
     (
         'stand-in top speed, 1 arm, camera streaming 30 Hz in lockstep (steps/s)',
         'standin_camera',
@@ -79,6 +80,22 @@ ROWS = [
     ),
     ('  wall time each camera frame adds (ms)', 'camera_frame_ms', None, '', None, '%.1f'),
     (
+        'stand-in top speed, 1 arm, /gazebo/model_states subscribed (steps/s)',
+        'standin_model_states',
+        'steps_per_s',
+        '',
+        None,
+        '%.0f',
+    ),
+    (
+        '  its cost per step on the physics thread (µs)',
+        'model_states_us',
+        None,
+        '',
+        None,
+        '%.2f',
+    ),
+    (
         'start-up: roslaunch to first joint_states (s)',
         'startup',
         'startup_s',
@@ -86,8 +103,84 @@ ROWS = [
         lambda v: v <= 3.0,
         '%.2f',
     ),
+    (
+        'robot_spawn.launch at real time, every process (cores)',
+        'seed_goal',
+        'cpu_core_fraction',
+        '≤ 0.5',
+        lambda v: v <= 0.5,
+        '%.3f',
+    ),
+    ('  of which the world (cores)', 'seed_goal', 'cpu_world', '', None, '%.3f'),
+    ('  of which the render processes (cores)', 'seed_goal', 'cpu_render', '', None, '%.3f'),
+    ('  of which look_away (cores)', 'seed_goal', 'cpu_look_away', '', None, '%.3f'),
+    (
+        '  of which the rest: master, rosout, arm_mover, ... (cores)',
+        'seed_goal',
+        'cpu_rest',
+        '',
+        None,
+        '%.3f',
+    ),
     ('command latency p50 (ms)', 'latency', 'p50_ms', '', None, '%.3f'),
     ('command latency p99 (ms)', 'latency', 'p99_ms', '≤ 2', lambda v: v <= 2.0, '%.3f'),
+]
+# scaling: N arms in one world, N × their steps/s ÷ one arm's (1 = linear)
+ROWS += [
+    (
+        '%sscaling, %d arms: %d × their steps/s ÷ 1 arm\'s' % ('' if n == 8 else '  ', n, n),
+        'scaling_%d' % n,
+        None,
+        '≥ 0.8' if n == 8 else '',
+        (lambda v: v >= 0.8) if n == 8 else None,
+        '%.2f',
+    )
+    for n in (2, 4, 8, 16)
+]
+# camera frame cost per renderer backend (bench/render.py): 'gl' is the default
+ROWS += [
+    (
+        '%scamera frame %s, renderer %s (%s)'
+        % ('  ' if size != '640x480' or kind != 'ms' else '', size, name, unit),
+        'render',
+        '%s_%s_%s' % (name, size, kind),
+        '≤ 8' if (name, size, kind) == ('gl', '640x480', 'ms') else '',
+        (lambda v: v <= 8.0) if (name, size, kind) == ('gl', '640x480', 'ms') else None,
+        '%.1f',
+    )
+    for name in ('gl', 'egl', 'tiny')
+    for size, kind, unit in (
+        ('640x480', 'ms', 'ms'),
+        ('640x480', 'cpu_ms', 'CPU ms, all threads'),
+        ('320x240', 'ms', 'ms'),
+        ('800x800', 'ms', 'ms'),
+    )
+]
+# a subscribed laser's cost on the physics thread (bench/sensors.py)
+ROWS += [
+    ('laser scan cost (ms per scan, 720 rays)', 'laser', 'scan_ms', '', None, '%.2f'),
+    ('  of which the ray cast, masking and noise (ms)', 'laser', 'cast_ms', '', None, '%.2f'),
+]
+# a subscribed depth camera's frame, 640x480, all of it off the physics thread (bench/depth.py)
+ROWS += [
+    ('depth camera frame cost (ms)', 'depth_camera', 'frame_ms', '', None, '%.1f'),
+    ('  of which rendering, depth in metres (ms)', 'depth_camera', 'render_ms', '', None, '%.1f'),
+    (
+        '  of which the point cloud, built, serialized (ms)',
+        'depth_camera',
+        'point_cloud_ms',
+        '',
+        None,
+        '%.1f',
+    ),
+    (
+        '  of which the 32FC1 image, built, serialized (ms)',
+        'depth_camera',
+        'depth_image_ms',
+        '',
+        None,
+        '%.1f',
+    ),
 ]
 
 
@@ -121,6 +214,7 @@ def table(results: Results) -> str:
 def write_markdown(results: Results, path: str) -> str:
     m = results['machine']
     text = table(results)
+    from .render import render_section
     from .soak import existing_section
 
     soak = existing_section(path)  # make soak's section outlives a new make bench
@@ -131,7 +225,7 @@ def write_markdown(results: Results, path: str) -> str:
             '`bench/results.json`, the plot in `bench/bench.png`. Every figure below comes '
             'from one run of that command, the stand-in and the bare pybullet loop measured '
             'side by side.\n\n'
-            'Machine: %s, %s cores, Linux %s, Python %s, pybullet %s; %s.%s\n\n'
+            'Machine: %s, %s cores, Linux %s, Python %s, pybullet %s; %s.%s%s\n\n'
             % (
                 m['cpu'] or 'unknown CPU',
                 m['cores'],
@@ -139,12 +233,17 @@ def write_markdown(results: Results, path: str) -> str:
                 m['python'],
                 m['pybullet'],
                 m['date'],
+                ' Load average as the run ended (1, 5, 15 min): %.1f, %.1f, %.1f: other work '
+                'shared the machine.' % tuple(m['load_average'])
+                if m.get('load_average')
+                else '',
                 ' **Quick run (smoke): one short run each.**' if results['quick'] else '',
             )
         )
         f.write(text + '\n')
         f.write(unmet_section(results))
         f.write(profile_section(results))
+        f.write(render_section(results))
         f.write(METHOD)
         if soak:
             f.write('\n' + soak)
@@ -152,7 +251,8 @@ def write_markdown(results: Results, path: str) -> str:
 
 
 def unmet_section(results: Results) -> str:
-    """Why a goal is not met, with this run's own figures."""
+    """Why a goal is not met, with this run's own figures and what was tried (facts measured
+    with the code as it is; see BENCHMARKS.md's notes)."""
     fig = results['figures']
 
     def med(key: str, field: str) -> Optional[float]:
@@ -163,30 +263,39 @@ def unmet_section(results: Results) -> str:
     bare, standin = med('bare', 'steps_per_s'), med('standin_1', 'steps_per_s')
     if ratio is not None and ratio < 0.6 and bare and standin:
         out.append(
-            '- **Speed ratio %.2f (goal 0.6).** A bare step takes %.1f µs, '
-            'a stand-in step %.1f µs. '
-            'The difference is Python doing what ros_control does: four controller objects with '
-            'a control_toolbox PID each, effort saturation per joint, the hardware interface '
-            'and the controller manager: about %.1f µs more per joint per step in CPython than '
-            'the bare loop\'s inline PD. The profile below shows Python taking most of the '
-            'physics thread; joint_states and /clock cost the rest. Closing the gap '
-            'means moving the per-joint path out of Python.'
-            % (ratio, 1e6 / bare, 1e6 / standin, (1e6 / standin - 1e6 / bare) / 4)
+            '- **Speed ratio %.2f (goal 0.6).** A bare step takes %.1f µs, a stand-in step '
+            '%.1f µs; the goal needs %.1f µs. Both share pybullet\'s step and its joint read '
+            'and torque write; the rest of the stand-in\'s step is what ros_control and '
+            'gazebo_ros add around them (profile below): the controllers\' update (now one '
+            'pass per controller type, the PID inline: 0.3 µs a joint), the hardware '
+            'interface\'s read and saturation, joint_states and /clock written to their '
+            'subscribers (a loopback write costs about 25 µs, one every few steps at top '
+            'speed), and per-step checks of the state topics and the camera. Timed apart at '
+            'top speed (2026-11-23, perf_counter around each part, each timing adding about '
+            '0.3 µs): pybullet\'s step 6.5 µs; controller manager and hardware interface 7.4 '
+            'µs, of which joint_states 1.9 (a 38 µs publish every 20 steps), the read 2.4 and '
+            'write 1.8 (with pybullet\'s calls, 2.1 µs), the four position controllers about '
+            '1.3; /clock 1.0; gazebo_ros\'s per-step state-topic checks 0.7; the camera\'s due '
+            'check 0.4. Tried: numpy for '
+            'the four joints\' PID and saturation costs 9 µs a step against 1.3 µs for the '
+            'inline Python, so the per-joint path stays in plain Python.'
+            % (ratio, 1e6 / bare, 1e6 / standin, 1e6 / bare / 0.6)
         )
     cpu, floor = med('realtime', 'cpu_core_fraction'), med('idle_world', 'cpu_core_fraction')
     wake = med('idle_world', 'sleep_wakeup_cpu_us')
     if cpu is not None and cpu > 0.10 and floor is not None:
         out.append(
             '- **CPU at real time %.3f of a core (goal 0.10).** An empty world already costs '
-            '%.3f: a 1 kHz world sleeps and wakes 1 000 times a second, and one wake-up costs '
-            '%.0f µs of CPU on this virtual machine. arm1 with its five controllers and its '
-            'subscribers (robot_state_publisher, joint_state_publisher, the spawner and this '
-            'benchmark read /clock) adds %.0f µs of CPU per step, several times what a step '
-            'costs back to back at top speed (%.0f µs): a step that starts after a sleep '
-            'finds cold caches, and every /clock goes out to each subscriber. '
-            'Running two steps per wake-up would cut the wake-ups but hold a command up to a '
-            'step longer, against the 2 ms latency goal, so the world keeps one step per '
-            'wake-up.'
+            '%.3f: a 1 kHz world sleeps and wakes 500 times a second at two steps a wake-up '
+            '(one wake-up: %.0f µs of CPU on this virtual machine). arm1 adds %.0f µs of CPU '
+            'per step, several times '
+            'what a step costs back to back at top speed (%.0f µs): a step after a sleep runs '
+            'on cold caches. Done: two steps per wake-up (world_loop.STEPS_PER_WAKE; commands '
+            'and hand-over calls wake the loop early, so they wait no longer): measured side '
+            'by side, 0.083-0.089 core against 0.104-0.106 with one, and a lower command '
+            'latency. What is left is per wake-up and per step: four steps per wake-up saved '
+            'no more clearly, and every /clock (100 Hz) goes to each of its subscribers, one '
+            'loopback write each.'
             % (
                 cpu,
                 floor,
@@ -195,13 +304,45 @@ def unmet_section(results: Results) -> str:
                 1e6 / standin if standin else float('nan'),
             )
         )
+    p99, p50 = med('latency', 'p99_ms'), med('latency', 'p50_ms')
+    if p99 is not None and p99 > 2.0:
+        out.append(
+            '- **Command latency p99 %.2f ms (goal 2), p50 %.2f ms.** A command waits for the '
+            'next step (at most 1 ms at one step per wake-up) and for its delivery from the '
+            'publisher\'s process; the tail is scheduling: with other work on the 2 cores the '
+            'world or the publisher waits for a core. In the same conditions (500 commands, '
+            'load average about 4) the code before this round gave p99 2.2-3.6 ms; the quiet '
+            'run of 2026-11-23 13:07 gave 1.30 ms.'
+            % (p99, p50 if p50 is not None else float('nan'))
+        )
+    scaling = fig.get('scaling_8', {}).get('median')
+    if scaling is not None and scaling < 0.8:
+        out.append(
+            '- **8 arms scale at %.2f of linear (goal 0.8).** Each arm brings its own '
+            'controller manager, joint_states publisher and pybullet body; a run this far from '
+            'linear on a shared 2-core machine usually means other work took the cores (see '
+            'the spread).' % scaling
+        )
     if not out:
         return ''
     return '\n## Goals not met, and why\n\n' + '\n'.join(out) + '\n'
 
 
+# The split of the profiled run before the one-pass control path (make bench of
+# 2026-11-23 13:07 UTC, code at 8ec20fc), next to this run's.
+PROFILE_BEFORE = {
+    'controllers, PID, controller manager (Python)': 0.30,
+    'hardware interface, robot, simulation step (Python)': 0.18,
+    'pybullet stepSimulation': 0.18,
+    'Python built-ins (min, max, isfinite, ...) and the rest': 0.12,
+    'ROS publishing (messages, rospy, sockets)': 0.11,
+    'pybullet joint read / torque write': 0.07,
+    'world loop, clock, pacing': 0.05,
+}
+
+
 def profile_section(results: Results) -> str:
-    """Where the stand-in's step goes, from the profiled top-speed run."""
+    """Where the stand-in's step goes, from the profiled top-speed run, next to before."""
     runs = results['raw'].get('profile')
     if not runs:
         return ''
@@ -211,14 +352,24 @@ def profile_section(results: Results) -> str:
         '## Where a stand-in step goes',
         '',
         'cProfile of the physics thread at top speed (1 arm). Profiling slows Python code '
-        'more than pybullet\'s C++, so Python\'s real share is somewhat smaller.',
+        'more than pybullet\'s C++, so Python\'s real share is somewhat smaller. "Before": '
+        'the same measurement before the one-pass control path (2026-11-23 13:07 UTC, 8ec20fc).',
         '',
-        '| part | share of the physics thread |',
-        '|---|---|',
+        '| part | share of the physics thread | before |',
+        '|---|---|---|',
     ]
     lines += [
-        '| %s | %.0f %% |' % (k, 100 * v) for k, v in sorted(shares.items(), key=lambda kv: -kv[1])
+        '| %s | %.0f %% | %s |'
+        % (k, 100 * v, '%.0f %%' % (100 * PROFILE_BEFORE[k]) if k in PROFILE_BEFORE else '')
+        for k, v in sorted(shares.items(), key=lambda kv: -kv[1])
     ]
+    steps = runs[0].get('profiled_steps_per_s')
+    if steps:
+        lines += [
+            '',
+            'Steps per second while profiled: %.0f (before: about 15 000, the same '
+            'measurement at 8ec20fc).' % steps,
+        ]
     return '\n'.join(lines) + '\n'
 
 
@@ -243,6 +394,17 @@ METHOD = '''
   the world records the wall time of the first control update that uses each one.
 - **the floor**: the world node with no robot at real time (CPU over 20 s), and the CPU of
   one 0.9 ms `time.sleep` (2 000 of them).
+- **robot_spawn.launch**: `roslaunch arm1 robot_spawn.launch gui:=false` (the world, arm1
+  with its camera at 30 Hz, arm_mover, look_away watching the camera), 5 s after the first
+  joint_states: user + system CPU of the roslaunch process and everything it started (the
+  master included) over 20 s of wall time, split by process.
+- **/gazebo/model_states subscribed**: stand-in top speed, 1 arm, with `rostopic hz
+  /gazebo/model_states` in another process; its cost per step is the difference of the two
+  step times.
+- **depth camera frame cost**: a 640 × 480 gazebo_ros_openni_kinect camera 2.4 m from a wall,
+  in one process: the render process's work (default renderer: RGB and depth buffer, depth
+  to metres) plus the plugin's (the 32FC1 depth image and the x y z rgb PointCloud2, each
+  built and serialized), median of 60 frames each. None of it runs on the physics thread.
 '''
 
 
@@ -253,10 +415,11 @@ def write_plot(results: Results, path: str) -> None:
     import matplotlib.pyplot as plt
 
     raw = results['raw']
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    keys = [k for k in ('bare', 'standin_1', 'standin_2', 'standin_4', 'standin_8') if k in raw]
+    fig, axes = plt.subplots(1, 4, figsize=(21, 4))
+    arms = (1, 2, 4, 8, 16)
+    keys = [k for k in ['bare'] + ['standin_%d' % n for n in arms] if k in raw]
     labels = [
-        'bare\npybullet' if k == 'bare' else '%s arm%s' % (k[-1], '' if k[-1] == '1' else 's')
+        'bare\npybullet' if k == 'bare' else '%s arm%s' % (k[8:], '' if k == 'standin_1' else 's')
         for k in keys
     ]
     for x, k in enumerate(keys):
@@ -283,7 +446,39 @@ def write_plot(results: Results, path: str) -> None:
         )
         axes[1].axhline(1.0, color='tab:green', lw=1, ls='--')
         axes[1].axhline(0.10, color='tab:orange', lw=1, ls='--')
+        if 'seed_goal' in raw:
+            seed = sorted(r['cpu_core_fraction'] for r in raw['seed_goal'])
+            axes[1].bar(
+                ['robot_spawn.launch\n(cores, all)'], [seed[len(seed) // 2]], color='tab:red'
+            )
+            axes[1].axhline(0.5, color='tab:red', lw=1, ls='--')
         axes[1].set_title('At real time (goal lines dashed)')
+    scaled = [(n, results['figures'].get('scaling_%d' % n, {}).get('median')) for n in arms]
+    scaled = [(1, 1.0)] + [(n, v) for n, v in scaled[1:] if v is not None]
+    if len(scaled) > 1:
+        axes[2].plot([n for n, _ in scaled], [v for _, v in scaled], 'o-', color='tab:blue')
+        axes[2].axhline(0.8, color='tab:orange', lw=1, ls='--', label='goal at 8 arms (0.8)')
+        axes[2].axhline(1.0, color='tab:gray', lw=1, ls=':', label='linear')
+        axes[2].set_xscale('log', base=2)
+        axes[2].set_xticks(arms, [str(n) for n in arms])
+        axes[2].set_xlabel('arms in one world')
+        axes[2].set_ylabel("N × steps/s ÷ 1 arm's steps/s")
+        axes[2].set_ylim(0, 1.3)
+        axes[2].set_title('Scaling (1 = linear)')
+        axes[2].legend()
+    frames = results['figures'].get('render', {})
+    sizes = ('320x240', '640x480', '800x800')
+    for i, name in enumerate(('gl', 'egl', 'tiny')):
+        ms = [frames.get('%s_%s_ms' % (name, size), {}).get('median') for size in sizes]
+        if all(v is not None for v in ms):
+            xs = [x + (i - 1) * 0.27 for x in range(len(sizes))]
+            axes[3].bar(xs, ms, width=0.27, label=name + (' (default)' if name == 'gl' else ''))
+    if frames:
+        axes[3].axhline(8.0, color='tab:orange', lw=1, ls='--', label='goal at 640x480 (8 ms)')
+        axes[3].set_xticks(range(len(sizes)), sizes)
+        axes[3].set_ylabel('ms per frame (median)')
+        axes[3].set_title('Camera frame per renderer, no GPU')
+        axes[3].legend()
     fig.tight_layout()
     os.makedirs(os.path.dirname(path), exist_ok=True)
     fig.savefig(path, dpi=100)

@@ -17,6 +17,7 @@ def standin(
     profile: bool = False,
     camera: bool = False,
     trajectory: bool = False,
+    model_states: bool = False,
 ) -> Dict[str, Any]:
     """Steps per wall second over ``seconds`` after ``warmup`` (with ``profile``: where the
     physics thread's time goes instead; with ``camera``: arm1's camera streaming)."""
@@ -24,7 +25,7 @@ def standin(
 
     # With the camera: in lockstep, so that the figure says what a frame costs the physics.
     node, pacer = start_standin(arms, 0, lockstep=camera, trajectory=trajectory)
-    procs = listeners(arms, camera)
+    procs = listeners(arms, camera, model_states)
     marks: List[Tuple[float, int]] = []
 
     def timer() -> None:
@@ -48,9 +49,12 @@ def standin(
             profiler.disable()
         for proc in procs:
             proc.terminate()
+    (w0, s0), (w1, s1) = marks
     if profiler:
         import pstats
 
-        return {'profile_share': profile_split(pstats.Stats(profiler))}
-    (w0, s0), (w1, s1) = marks
+        return {
+            'profile_share': profile_split(pstats.Stats(profiler)),
+            'profiled_steps_per_s': (s1 - s0) / (w1 - w0),
+        }
     return {'steps_per_s': (s1 - s0) / (w1 - w0), 'arms': arms, 'camera': camera}

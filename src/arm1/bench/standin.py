@@ -56,12 +56,16 @@ def start_standin(
     return node, pacer
 
 
-def listeners(arms: int, camera: bool = False) -> List[subprocess.Popen]:
+def listeners(
+    arms: int, camera: bool = False, model_states: bool = False
+) -> List[subprocess.Popen]:
     """A subscriber to every arm's joint_states in another process; one process for all, so
     that N arms do not bring N Python listeners. With ``camera``, it also watches arm1's
-    camera, which makes the world render it."""
+    camera, which makes the world render it; with ``model_states``, /gazebo/model_states
+    (published before every step while subscribed, as Gazebo does)."""
     topics = ['/arm%d/joint_states' % k for k in range(1, arms + 1)]
     topics += ['/rgb_camera/image_raw'] if camera else []
+    topics += ['/gazebo/model_states'] if model_states else []
     return [
         subprocess.Popen(
             ['rostopic', 'hz'] + topics, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL

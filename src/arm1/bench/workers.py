@@ -12,9 +12,12 @@ import sys
 from typing import Any, Callable, Dict, List, Optional
 
 from .bare_pybullet import bare
+from .depth import depth_frame
 from .idle import idle_world
 from .latency import latency, publisher
-from .launched import realtime, startup
+from .launched import realtime, seed_goal, startup
+from .render import render
+from .sensors import laser_scan
 from .speed import standin
 
 KINDS: Dict[str, Callable[..., Any]] = {
@@ -25,6 +28,10 @@ KINDS: Dict[str, Callable[..., Any]] = {
     'idle_world': idle_world,
     'startup': startup,
     'realtime': realtime,
+    'seed_goal': seed_goal,
+    'render': render,
+    'laser': laser_scan,
+    'depth': depth_frame,
 }
 
 
@@ -39,6 +46,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser.add_argument('--profile', action='store_true', default=None)
     parser.add_argument('--camera', action='store_true', default=None)
     parser.add_argument('--trajectory', action='store_true', default=None)
+    parser.add_argument('--model-states', action='store_true', default=None)
     args = parser.parse_args(argv)
     kwargs = {k: v for k, v in vars(args).items() if k != 'kind' and v is not None}
     result = KINDS[args.kind](**kwargs)

@@ -7,7 +7,7 @@ Protocols of interfaces.py.
 
 from __future__ import annotations
 
-from typing import Any, ClassVar, List, Literal, Optional, Tuple
+from typing import Any, ClassVar, List, Literal, Optional, Sequence, Tuple
 
 from .hardware_interface import JointHandle
 from .interfaces import NodeHandle, Params, RobotHW
@@ -68,6 +68,14 @@ class Controller:
 
     def stopping(self, time_ns: int) -> None:
         pass
+
+    @classmethod
+    def update_group(cls, controllers: Sequence[Controller], time_ns: int, period_ns: int) -> None:
+        """Update running controllers of this very type, in their order. The manager calls
+        this once per run of consecutive controllers of one type; a type may override it to
+        do them all in one pass, with the same result as ``update`` on each."""
+        for c in controllers:
+            c.update(time_ns, period_ns)
 
     def claimed_resources(self) -> List[Tuple[str, List[str]]]:
         """``[(interface, [joint names])]``, as list_controllers reports them."""

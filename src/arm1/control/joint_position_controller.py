@@ -6,7 +6,7 @@ import logging
 import math
 import threading
 import time
-from typing import Any, Dict, Mapping, Optional
+from typing import Any, Dict, Mapping, Optional, Sequence, cast
 
 from .angles import shortest_angular_distance, shortest_angular_distance_with_large_limits
 from .controller import Controller, ControllerError, require_param
@@ -181,6 +181,59 @@ class JointPositionController(Controller):
         if self._loop_count % STATE_PUBLISH_DIVIDER == 0:
             self._state_pub.publish(self._state(time_ns, set_point, error, dt, effort))
         self._loop_count += 1
+
+    @classmethod
+    def update_group(cls, controllers: Sequence[Controller], time_ns: int, period_ns: int) -> None:
+        """``update`` of each, in one pass: Pid.compute_command written out inline (same
+        arithmetic in the same order, so the same efforts to the bit; test_pid checks), which
+        spares the per-joint method calls that made up most of a step's Python time."""
+        if cls.update is not JointPositionController.update:
+            # A subclass with an update of its own (JointVelocityController) goes one by one.
+            super().update_group(controllers, time_ns, period_ns)
+            return
+        dt = period_ns * 1e-9  # the PID works in seconds, as control_toolbox's does
+        isfinite = math.isfinite
+        for c in cast(Sequence[JointPositionController], controllers):
+            if c._pending_gains is not None:
+                c._apply_pending_gains()
+            joint = c.joint
+            # min(max(target, lower), upper), as builtins' min and max decide it
+            set_point, lower, upper = c.target, c._lower, c._upper
+            if lower > set_point:
+                set_point = lower
+            if upper < set_point:
+                set_point = upper
+            error = set_point - joint.position if c._plain_error else c.error(set_point)
+            pid = c.pid
+            if dt == 0.0 or not isfinite(error):
+                effort = 0.0
+            else:
+                error_dot = (error - pid.p_error_last) / dt
+                pid.p_error_last = pid.p_error = error
+                pid.d_error = error_dot
+                if not isfinite(error_dot):
+                    effort = 0.0
+                else:
+                    i_error = pid.i_error + dt * error
+                    i = pid.i
+                    if pid.antiwindup:
+                        if i != 0.0:
+                            lo, hi = sorted((pid.i_min / i, pid.i_max / i))
+                            i_error = min(max(i_error, lo), hi)
+                        i_term = i * i_error
+                    else:
+                        i_term = i * i_error
+                        if pid.i_min > i_term:
+                            i_term = pid.i_min
+                        if pid.i_max < i_term:
+                            i_term = pid.i_max
+                    pid.i_error = i_error
+                    pid.cmd = effort = pid.p * error + i_term + pid.d * error_dot
+            joint.command = effort
+            count = c._loop_count
+            if count % STATE_PUBLISH_DIVIDER == 0:
+                c._state_pub.publish(c._state(time_ns, set_point, error, dt, effort))
+            c._loop_count = count + 1
 
     def _state(
         self, time_ns: int, set_point: float, error: float, dt: float, effort: float

@@ -30,6 +30,9 @@ class Limits:
     mesh_bytes: int = 256 * 1024 * 1024  # one mesh file
     mesh_triangles: int = 5_000_000  # one mesh
     rays_per_laser: int = 1_000_000  # samples x vertical samples of one ray sensor
+    # rays x update rate of the world's ray sensors, each and all together (rate 0 counted
+    # as sensor_update_rate): lasers are cast on the physics thread, ~2 us a ray here
+    ray_casts_per_second: float = 2e6
     description_bytes: int = 64 * 1024 * 1024  # one URDF/SDF document from a request
     name_length: int = 255  # characters of a model, link, joint or namespace name
 

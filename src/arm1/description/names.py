@@ -7,11 +7,21 @@ to build a file path; the rules give a clear refusal instead of a surprise.
 
 from __future__ import annotations
 
+import re
 import unicodedata
 
 
 class IllegalName(ValueError):
     """A name breaks a rule; the message names the name (shortened) and the rule."""
+
+
+# rosgraph.names.is_legal_name's rule without ROS: [~/A-Za-z], then word characters and '/'
+_ROS_NAME = re.compile(r'[~/A-Za-z][\w/]*\Z')
+
+
+def legal_ros_name(name: str) -> bool:
+    """A legal ROS graph resource name, as rosgraph.names.is_legal_name ('' is legal)."""
+    return name == '' or (_ROS_NAME.match(name) is not None and '//' not in name)
 
 
 def shown(name: str, width: int = 60) -> str:

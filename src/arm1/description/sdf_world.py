@@ -1,4 +1,8 @@
-"""Reads a Gazebo SDF world: physics settings, gravity and the models a pybullet world can build.
+"""Reads a Gazebo SDF world: physics settings, gravity and its models.
+
+Static models of planes only (ground_plane) become fixed scenery; every other ``<model>``
+and ``<include>``d model becomes a URDF (sdf_model) that the simulation spawns at start,
+so the model services see it under its SDF name.
 
 Parsed with defusedxml (no DTD, hence no entity expansion; see safe_xml). The
 world's limits on spawned content come from the plugin LIMITS_PLUGIN.
@@ -6,11 +10,12 @@ world's limits on spawned content come from the plugin LIMITS_PLUGIN.
 
 from __future__ import annotations
 
+import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Optional
 
-from . import safe_xml
+from . import safe_xml, sdf_model
 from .limits import LimitError, Limits
 from .resource_paths import ResourceNotFound
 
@@ -48,6 +53,7 @@ class WorldConfig:
     real_time_update_rate: float = 1000.0
     gravity: tuple = (0.0, 0.0, -9.8)
     models: list = field(default_factory=list)
+    spawns: list = field(default_factory=list)  # sdf_model.ModelSpawn, spawned at start
     skipped: list = field(default_factory=list)  # (name, why) of what could not be built
     limits: Limits = field(default_factory=Limits)  # what spawned content may cost
     lockstep: bool = False  # gzserver --lockstep: physics waits for every sensor frame
@@ -87,25 +93,70 @@ def _shape(geometry, what):
     return None
 
 
-def _model(model):
-    """A StaticModel, or the reason it cannot be built."""
+def _scenery(model: ET.Element) -> Optional[StaticModel]:
+    """A static model made of planes only (ground_plane): built as fixed scenery, as before."""
+    if not _bool(model.findtext('static')):
+        return None
     name = model.get('name', '?')
-    if (model.findtext('static') or 'false').strip() not in ('1', 'true'):
-        return None, 'only static models are built'
     shapes = []
     for link in model.findall('link'):
         link_pose = _pose(link, 'model %s link' % name)
         for collision in link.findall('collision'):
             geometry = collision.find('geometry')
-            shape = _shape(geometry, 'model %s' % name) if geometry is not None else None
+            if geometry is None or geometry.find('plane') is None:
+                return None
+            shape = _shape(geometry, 'model %s' % name)
             if shape is None:
-                return None, 'collision geometry other than %s' % '/'.join(SHAPES)
+                return None
             pose = _pose(collision, 'model %s collision' % name)
             shape.pose = tuple(a + b for a, b in zip(link_pose, pose))  # sums are right for xyz
             shapes.append(shape)
-    if not shapes:
-        return None, 'no collision geometry'
-    return StaticModel(name, _pose(model, 'model %s' % name), shapes), None
+    if not shapes or model.findall('joint'):
+        return None
+    return StaticModel(name, _pose(model, 'model %s' % name), shapes)
+
+
+def _bool(text: Optional[str]) -> bool:
+    return (text or '').strip() in ('1', 'true')
+
+
+def _model(
+    model: ET.Element,
+    config: WorldConfig,
+    base_dir: Optional[str] = None,
+    find_model: Optional[FindModel] = None,
+) -> None:
+    """Add the model to ``config``: ground planes as scenery, the rest as URDF spawns."""
+    name = model.get('name', '?')
+    try:
+        scenery = _scenery(model)
+    except SdfError:
+        scenery = None  # sdf_model names the culprit below
+    if scenery is not None:
+        config.models.append(scenery)
+        return
+    try:
+        parsed = sdf_model.parse_model(model, config.limits, base_dir, _model_dirs(find_model))
+        spawn = sdf_model.model_spawn(parsed)
+    except sdf_model.SdfModelError as exc:
+        config.skipped.append((name, str(exc)))
+        return
+    config.spawns.append(spawn)
+    config.skipped.extend((name, why) for why in spawn.warnings)
+
+
+def _model_dirs(find_model: Optional[FindModel]) -> Optional[sdf_model.FindModelDir]:
+    """model://NAME/... meshes: the folder of the model NAME the world's search finds."""
+    if find_model is None:
+        return None
+
+    def find(name: str) -> str:
+        try:
+            return os.path.dirname(find_model('model://' + name))
+        except ResourceNotFound as exc:
+            raise LookupError(str(exc)) from None
+
+    return find
 
 
 def _limits(world: ET.Element, source: str) -> Limits:
@@ -127,8 +178,10 @@ def _limits(world: ET.Element, source: str) -> Limits:
 
 def parse_world(xml_text, source='world', find_model: Optional[FindModel] = None):
     # The world file is the user's own, so no size limits; but no DTD either (no entities).
+    # Blank lines before the <?xml?> declaration are no error to Gazebo (TinyXML skips
+    # them; kinova-ros's jaco.world starts with one), so they are none here.
     try:
-        root = safe_xml.parse(xml_text, source)
+        root = safe_xml.parse(xml_text.lstrip(), source)
     except safe_xml.XmlRefused as exc:
         raise SdfError(str(exc)) from None
     world = root.find('world') if root.tag == 'sdf' else None
@@ -146,12 +199,9 @@ def parse_world(xml_text, source='world', find_model: Optional[FindModel] = None
     gravity = world.findtext('gravity')
     if gravity is not None:
         config.gravity = _numbers(gravity, 3, source + ' <gravity>')
+    base_dir = os.path.dirname(os.path.abspath(source)) if os.path.isfile(source) else None
     for model in world.findall('model'):
-        built, why = _model(model)
-        if built:
-            config.models.append(built)
-        else:
-            config.skipped.append((model.get('name', '?'), why))
+        _model(model, config, base_dir, find_model)
     for include in world.findall('include'):
         _include(include, config, find_model)
     return config
@@ -167,7 +217,7 @@ def _include(include: ET.Element, config: WorldConfig, find_model: Optional[Find
     try:
         path = find_model(uri)
         with open(path) as f:
-            root = safe_xml.parse(f.read(), path)
+            root = safe_xml.parse(f.read().lstrip(), path)
     except ResourceNotFound as exc:
         config.skipped.append((name, str(exc)))
         return
@@ -191,11 +241,7 @@ def _include(include: ET.Element, config: WorldConfig, find_model: Optional[Find
         if element is None:
             element = ET.SubElement(model, tag)
         element.text = text
-    built, why = _model(model)
-    if built:
-        config.models.append(built)
-    else:
-        config.skipped.append((model.get('name', name), why))
+    _model(model, config, os.path.dirname(path), find_model)
 
 
 def read_world(path, find_model: Optional[FindModel] = None):

@@ -74,7 +74,7 @@ class Mimic:
 class ControlPlugin:
     """The gazebo_ros_control ``<plugin>`` of a description."""
 
-    robot_namespace: str = ''
+    robot_namespace: Optional[str] = None  # None: no <robotNamespace> (empty: the root)
     robot_sim_type: str = 'gazebo_ros_control/DefaultRobotHWSim'
     control_period: Optional[float] = None
 
@@ -90,6 +90,10 @@ class RobotModel:
     gazebo_refs: dict = field(default_factory=dict)  # link -> {tag: text}
     sensors: list = field(default_factory=list)  # (link, <sensor> Element)
     mimics: list = field(default_factory=list)  # Mimic, one per follower
+    model_plugins: list = field(default_factory=list)  # <plugin> Elements of <gazebo> blocks
+    # (reference, <sensor> Element) of <gazebo reference> blocks naming no link of the URDF:
+    # Gazebo's URDF->SDF inserts an extension into its link only, so these go nowhere.
+    unplaced_sensors: list = field(default_factory=list)
 
     def actuated_joints(self):
         """Joints named by a transmission, with their hardware interface."""
@@ -148,14 +152,86 @@ def parse_description(xml_text: Union[str, bytes], limits: Optional[Limits] = No
 
 def _named(elements: list, kind: str, limits: Limits) -> list:
     """The names of ``elements``, each present and within limits.name_length."""
-    names = []
+    names: list = []
+    seen: set = set()
     for e in elements:
         name = e.get('name')
         if not name:
             raise UrdfError('a <%s> has no name' % kind)
         _check(limits, 'name_length', len(name), '%s name %s' % (kind, shown(name)))
+        if name in seen:  # urdfdom refuses it too; pybullet would say only "Cannot load URDF"
+            raise UrdfError('%s %s is not unique' % (kind, shown(name)))
+        seen.add(name)
         names.append(name)
     return names
+
+
+def _check_inertial(link: ET.Element) -> None:
+    """A link's <inertial> mass and inertia are finite numbers (NaN would reach pybullet,
+    lumped into a parent or not, and poison the whole model's motion)."""
+    inertial = link.find('inertial')
+    if inertial is None:
+        return
+    what = 'link %s <inertial>' % shown(link.get('name') or '')
+    for tag, keys in (
+        ('mass', ('value',)),
+        ('inertia', ('ixx', 'iyy', 'izz', 'ixy', 'ixz', 'iyz')),
+    ):
+        element = inertial.find(tag)
+        if element is None:
+            continue
+        for key in keys:
+            text = element.get(key)
+            if text is not None and not math.isfinite(
+                _float(text, '%s <%s> %s' % (what, tag, key))
+            ):
+                raise UrdfError('%s <%s> %s: %r is not a finite number' % (what, tag, key, text))
+    mass = inertial.find('mass')
+    if mass is not None and _float(mass.get('value', '0'), what) < 0:
+        raise UrdfError('%s <mass> %s is negative' % (what, mass.get('value')))
+
+
+# Sizes of each shape: (attribute, how many numbers); none may be non-finite, nor negative
+# but a mesh's scale
+# (pybullet takes them: a NaN box fell through the ground, a NaN cylinder flew off).
+SHAPE_SIZES = {
+    'box': (('size', 3),),
+    'sphere': (('radius', 1),),
+    'cylinder': (('radius', 1), ('length', 1)),
+    'mesh': (('scale', 3),),
+}
+
+
+def _check_geometry(link: ET.Element) -> None:
+    """Each collision's and visual's shape sizes are finite and not negative."""
+    for kind in ('collision', 'visual'):
+        for geometry in link.findall(kind + '/geometry'):
+            for shape in geometry:
+                for key, count in SHAPE_SIZES.get(shape.tag, ()):
+                    text = shape.get(key)
+                    if text is None:
+                        continue
+                    try:
+                        values = [float(v) for v in text.split()]
+                    except ValueError:
+                        values = []
+                    # a mesh's scale may mirror it (negative); sizes may not
+                    low = -math.inf if shape.tag == 'mesh' else 0.0
+                    if len(values) != count or not all(
+                        math.isfinite(v) and v >= low for v in values
+                    ):
+                        raise UrdfError(
+                            'link %s <%s> <%s %s>: %s is not %d finite number(s)%s'
+                            % (
+                                shown(link.get('name') or ''),
+                                kind,
+                                shape.tag,
+                                key,
+                                shown(text),
+                                count,
+                                '' if shape.tag == 'mesh' else ' >= 0',
+                            )
+                        )
 
 
 def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> RobotModel:
@@ -173,6 +249,9 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
     _check(limits, 'links_per_model', len(link_elements), robot)
     _check(limits, 'joints_per_model', len(joint_elements), robot)
     links = _named(link_elements, 'link', limits)
+    for e in link_elements:
+        _check_inertial(e)
+        _check_geometry(e)
     if not links:
         raise UrdfError("robot '%s' has no <link>" % root.get('name'))
     joints = {}
@@ -237,11 +316,12 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
     for g in root.findall('gazebo'):
         ref = g.get('reference')
         if ref is None:
+            model.model_plugins.extend(g.findall('plugin'))
             for p in g.findall('plugin'):
                 if p.get('filename') == CONTROL_PLUGIN:
                     period = p.findtext('controlPeriod')
                     model.control_plugin = ControlPlugin(
-                        (p.findtext('robotNamespace') or '').strip(),
+                        _stripped(p.findtext('robotNamespace')),
                         (p.findtext('robotSimType') or ControlPlugin.robot_sim_type).strip(),
                         _float(period, 'controlPeriod') if period else None,
                     )
@@ -251,11 +331,18 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
         tags = model.gazebo_refs.setdefault(ref, {})
         for child in g:
             if child.tag == 'sensor':
-                model.sensors.append((ref, child))
+                if ref in links:
+                    model.sensors.append((ref, child))
+                else:
+                    model.unplaced_sensors.append((ref, child))
             else:
                 tags[child.tag] = (child.text or '').strip()
     model.mimics = _checked_mimics(mimics, joints)
     return model
+
+
+def _stripped(text: Optional[str]) -> Optional[str]:
+    return None if text is None else text.strip()
 
 
 def _mimic_plugin(p: ET.Element) -> Mimic:

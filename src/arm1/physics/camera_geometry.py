@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from typing import List, Sequence, Tuple
 
+import numpy as np
 import pybullet as p
 
 from ..description.camera_sensor import CameraSensor
@@ -56,3 +57,23 @@ def projection_matrix(sensor: CameraSensor) -> Sequence[float]:
     aspect = sensor.width / float(sensor.height)
     vertical_fov = 2.0 * math.atan(math.tan(sensor.horizontal_fov / 2.0) / aspect)
     return p.computeProjectionMatrixFOV(math.degrees(vertical_fov), aspect, sensor.near, sensor.far)
+
+
+SKY_DEPTH = 1.0 - 2.0**-22  # window z from which a depth buffer counts as nothing drawn
+
+
+def depth_metres(buffer: np.ndarray, near: float, far: float) -> np.ndarray:
+    """Distance along the optical axis (z-depth, metres, float32) from an OpenGL depth buffer
+    (window z in [0, 1], as pybullet's getCameraImage gives it); +inf where nothing was drawn.
+
+    z = far * near / (far - (far - near) * d), the inverse of the perspective projection.
+    """
+    d = np.asarray(buffer, dtype=np.float32)
+    denominator = d * np.float32(near - far)  # float32 throughout: a few ms less at 640x480
+    denominator += np.float32(far)
+    with np.errstate(divide='ignore'):
+        z = np.float32(far * near) / denominator
+    # the far plane's clear value: no surface within the clip range (TinyRenderer's sky can
+    # read one or two float32 steps under 1)
+    z[d >= SKY_DEPTH] = np.inf
+    return z

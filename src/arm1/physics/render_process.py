@@ -1,20 +1,22 @@
 """Render processes: headless pybullet mirrors of the world that render camera frames.
 
-A 640 x 480 frame costs 10 to 55 ms of CPU in pybullet's software renderer
-(ER_TINY_RENDERER: no GPU, no display needed), more than a 30 Hz frame period,
-so frames are rendered in child processes: DIRECT pybullet clients with the
-world's scenery and URDFs; each request carries every robot's base pose and
-joint positions. The world's side (RenderProcess) reads replies on a thread of
-its own, so that a large frame is never copied on the physics thread and a
-child that dies is noticed at once, busy or idle.
+A 640 x 480 frame costs 2 to 5 ms of CPU with the default renderer (OpenGL on
+Mesa's llvmpipe) and 10 to 55 ms with pybullet's TinyRenderer (renderers.py,
+``ARM1_RENDERER``; no GPU, no display needed either way), and a renderer that
+crashes must not take the world with it, so frames are rendered in child
+processes: DIRECT pybullet clients with the world's scenery and URDFs; each
+request carries every robot's base pose and joint positions. The world's side
+(RenderProcess) reads replies on a thread of its own, so that a large frame is
+never copied on the physics thread and a child that dies is noticed at once,
+busy or idle.
 
 Protocol on a socket pair (multiprocessing.connection framing): world -> child
 ``(world_config, {name: load args})`` once, then ``('add', name, load args)``,
 ``('remove', name)``, ``('render', model, sensor, states)``; child -> world, one
 reply per render request in order: ``('frame', nbytes)`` followed by the image
-bytes, raw (no framing), or ``('error', text)``. The world receives those bytes
-straight into a buffer of its own with the GIL released: the pages of a fresh
-108 MB buffer fault in then, not on a copy that would hold the physics thread.
+bytes (then a depth camera's depth), raw (no framing), or ``('error', text)``. The world
+receives those bytes straight into a buffer of its own with the GIL released: the pages
+of a fresh 108 MB buffer fault in then, not on a copy that would hold the physics thread.
 """
 
 from __future__ import annotations
@@ -31,11 +33,10 @@ from multiprocessing.connection import Connection
 from typing import Any, Dict, Optional, Sequence, Tuple
 
 import numpy as np
-import pybullet as p
 
 from ..description.camera_sensor import CameraSensor
-from .camera_geometry import projection_matrix, sensor_pose, view_matrix
-from .world import World
+from . import renderers
+from .camera_geometry import depth_metres
 
 log = logging.getLogger('arm1.physics')
 
@@ -68,30 +69,29 @@ def render(
     sensor: CameraSensor,
     link_position: Sequence[float],
     link_orientation: Sequence[float],
+    backend: Optional[renderers.Backend] = None,
 ) -> bytes:
-    """One frame of ``sensor`` from a pybullet client, as image bytes (``sensor.step`` per row)."""
-    w, h = sensor.width, sensor.height
-    _, _, rgba, _, _ = p.getCameraImage(
-        w,
-        h,
-        view_matrix(*sensor_pose(sensor, link_position, link_orientation)),
-        projection_matrix(sensor),
-        renderer=p.ER_TINY_RENDERER,
-        flags=p.ER_NO_SEGMENTATION_MASK,
-        physicsClientId=client,
+    """One frame of ``sensor`` from a pybullet client, as image bytes (``sensor.step`` per row),
+    for a depth camera followed by its depth in metres (``sensor.frame_bytes`` in all);
+    TinyRenderer's unless a ``backend`` (renderers.py) is given."""
+    rgba, depth = renderers.render(
+        backend or renderers.Backend(), client, sensor, link_position, link_orientation
     )
-    return encode(np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4), sensor.format)
+    if sensor.depth_plugin:
+        return encode(rgba, sensor.format) + depth_metres(depth, sensor.near, sensor.far).tobytes()
+    return encode(rgba, sensor.format)
 
 
 # ---------------------------------------------------------------------- the child
 def _serve(conn: Connection) -> None:
     """The render process: a headless mirror of the world that answers render requests."""
-    world = None
+    world = backend = None
     raw = socket.socket(fileno=os.dup(conn.fileno()))  # the same socket, for the pixels
     raw.setblocking(True)
     try:
         world_config, robots = conn.recv()
-        world = World(world_config, gui=False)
+        backend = renderers.open_backend()  # $ARM1_RENDERER, inherited from the world
+        world = backend.open_world(world_config)
         mirror: Dict[str, Any] = {}  # name -> Robot, or the text of why it could not be loaded
         broken: Dict[str, str] = {}
 
@@ -124,7 +124,8 @@ def _serve(conn: Connection) -> None:
                     for name, state in states.items():
                         if name in mirror:
                             mirror[name].set_state(state)
-                    data = render(world.client, sensor, *mirror[model].link_pose(sensor.link))
+                    position, orientation = mirror[model].link_pose(sensor.link)
+                    data = render(world.client, sensor, position, orientation, backend)
                 except Exception as exc:  # reported to the world, which logs it
                     conn.send(('error', '%s: %s' % (type(exc).__name__, exc)))
                 else:
@@ -134,6 +135,8 @@ def _serve(conn: Connection) -> None:
         pass
     finally:
         raw.close()
+        if backend is not None:
+            backend.close()
         if world is not None:
             world.close()
 
@@ -157,6 +160,10 @@ class RenderProcess:
 
     def __init__(self, world_config: Any, robots: Dict[str, tuple], niceness: int = 0) -> None:
         """``robots``: {model name: World.load_robot arguments} to mirror from the start."""
+        try:
+            renderers.backend_name()  # a bad $ARM1_RENDERER said here, not in a child's traceback
+        except renderers.BackendError as exc:
+            raise RenderError(str(exc)) from None
         ours, theirs = socket.socketpair()
         for end in (ours, theirs):
             end.setblocking(True)  # rospy sets a default socket timeout, which means non-blocking

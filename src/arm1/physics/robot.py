@@ -1,6 +1,10 @@
 """A robot in the pybullet world: loaded from a URDF file, read and driven by joint effort."""
 
+import itertools
+
 import pybullet as p
+
+IDENTITY = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
 
 class RobotLoadError(ValueError):
@@ -9,17 +13,31 @@ class RobotLoadError(ValueError):
 
 class Robot:
     def __init__(
-        self, client, urdf_path, position=(0, 0, 0), orientation=(0, 0, 0, 1), fixed_base=False
+        self,
+        client,
+        urdf_path,
+        position=(0, 0, 0),
+        orientation=(0, 0, 0, 1),
+        fixed_base=False,
+        options=None,
     ):
+        """``options`` is a description.gazebo_tags.BodyOptions (lumped frames, per-link
+        contact settings, selfCollide, gravity off), None for none."""
         self.client = client
+        self.frames = dict(options.frames) if options is not None else {}
+        self_collide = set(options.self_collide) if options is not None else set()
         # Inertia from the file: pybullet would otherwise derive it from the collision mesh.
+        flags = p.URDF_USE_INERTIA_FROM_FILE
+        if self_collide:
+            # pybullet's default with this flag: every pair but parent and child collides.
+            flags |= p.URDF_USE_SELF_COLLISION
         try:
             self.body = p.loadURDF(
                 urdf_path,
                 position,
                 orientation,
                 useFixedBase=fixed_base,
-                flags=p.URDF_USE_INERTIA_FROM_FILE,
+                flags=flags,
                 physicsClientId=client,
             )
         except p.error as exc:
@@ -47,18 +65,70 @@ class Robot:
             for i in self.joint_index.values()
             if p.getJointInfo(self.body, i, physicsClientId=client)[2] != p.JOINT_FIXED
         ]
+        # <dynamics friction> by joint index: Gazebo applies it as the joint motor's fmax at
+        # vel 0 (Coulomb friction); whoever turns a motor off should leave it this force.
+        self.joint_friction = {
+            i: abs(p.getJointInfo(self.body, i, physicsClientId=client)[7]) for i in movable
+        }
         if movable:
-            # Each joint's default velocity motor would hold it still: switch it off so effort acts.
+            # Each joint's default velocity motor would hold it still: switch it off so effort
+            # acts, except for its friction. pybullet reads the friction from the URDF but
+            # applies none itself; it applies <dynamics damping> as Gazebo does (viscous).
             p.setJointMotorControlArray(
                 self.body,
                 movable,
                 p.VELOCITY_CONTROL,
-                forces=[0.0] * len(movable),
+                targetVelocities=[0.0] * len(movable),
+                forces=[self.joint_friction[i] for i in movable],
                 physicsClientId=client,
             )
         self.movable = movable
+        # Links whose weight is cancelled before each step (turnGravityOff): (index, mass)
+        self.gravity_off = []
+        if options is not None:
+            self._apply_link_options(options, self_collide)
         # (follower index, leader index, multiplier, offset, max force, sensitiveness)
         self.mimics = []
+
+    def _apply_link_options(self, options, self_collide):
+        cid = self.client
+        for name, kwargs in options.dynamics.items():
+            if name in self.link_index:
+                p.changeDynamics(self.body, self.link_index[name], physicsClientId=cid, **kwargs)
+        for name in options.no_gravity:
+            if name in self.link_index:
+                i = self.link_index[name]
+                mass = p.getDynamicsInfo(self.body, i, physicsClientId=cid)[0]
+                self.gravity_off.append((i, mass))
+        if self_collide:
+            # Gazebo: two links collide when either has selfCollide, never across a joint.
+            # Only links with collision shapes need a filter (pairs grow as their square).
+            quiet = [
+                i
+                for n, i in self.link_index.items()
+                if n not in self_collide
+                and p.getCollisionShapeData(self.body, i, physicsClientId=cid)
+            ]
+            for a, b in itertools.combinations(sorted(quiet), 2):
+                p.setCollisionFilterPair(self.body, self.body, a, b, 0, physicsClientId=cid)
+
+    def frame(self, link_name):
+        """Where a link's frame is carried: ``(pybullet link index, offset pose)``.
+
+        A link of the body gives its own index and the identity; a link merged into its
+        parent by fixed-joint lumping (gone from link_index, link_states and get_link_state,
+        as in Gazebo) gives the index of the link it now lives on and the pose
+        ``((x, y, z), (qx, qy, qz, qw))`` of its frame in that link's frame. Sensors and
+        cameras attached to any URDF link resolve it through here. KeyError for a name
+        the URDF does not have."""
+        if link_name in self.link_index:
+            return self.link_index[link_name], IDENTITY
+        parent, offset = self.frames[link_name]
+        return self.link_index[parent], offset
+
+    def lumped_link(self, link_name):
+        """``(link it was merged into, offset pose)`` for a lumped link, None otherwise."""
+        return self.frames.get(link_name)
 
     def set_mimics(self, mimics):
         """``[(follower, leader, multiplier, offset, max_force, sensitiveness)]`` by joint name:
@@ -168,13 +238,19 @@ class Robot:
             p.resetJointState(self.body, i, value, physicsClientId=self.client)
 
     def link_pose(self, link_name):
-        """World position and quaternion of a link's frame."""
-        i = self.link_index[link_name]
+        """World position and quaternion of a link's frame (a lumped link's too: see frame)."""
+        i, offset = self.frame(link_name)
         if i == -1:
             com = p.getBasePositionAndOrientation(self.body, physicsClientId=self.client)
-            return p.multiplyTransforms(*com, *self._base_from_com)
-        s = p.getLinkState(self.body, i, computeForwardKinematics=True, physicsClientId=self.client)
-        return s[4], s[5]
+            pose = p.multiplyTransforms(*com, *self._base_from_com)
+        else:
+            s = p.getLinkState(
+                self.body, i, computeForwardKinematics=True, physicsClientId=self.client
+            )
+            pose = s[4], s[5]
+        if offset is IDENTITY:
+            return pose
+        return p.multiplyTransforms(*pose, *offset)
 
     def remove(self):
         p.removeBody(self.body, physicsClientId=self.client)

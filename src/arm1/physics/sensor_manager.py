@@ -50,7 +50,8 @@ RESTART_DELAY = 0.5  # s of wall time before the first replacement; doubles with
 RENDER_NICENESS = 10  # default timing: rendering yields the CPU to the physics thread
 
 States = Callable[[], Dict[str, Any]]
-Pixels = Union[bytes, memoryview]  # a frame's image bytes, ``sensor.step`` per row
+# a frame's image bytes, ``sensor.step`` per row (a depth camera's depth after them: frame_bytes)
+Pixels = Union[bytes, memoryview]
 
 
 class Renderer(Protocol):

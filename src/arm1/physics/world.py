@@ -26,10 +26,13 @@ def connect(gui):
 
 
 class World:
-    def __init__(self, config, gui=False):
-        """``config`` is a sdf_world.WorldConfig."""
+    def __init__(self, config, gui=False, on_connect=None):
+        """``config`` is a sdf_world.WorldConfig; ``on_connect(client)`` runs before any body
+        is built (pybullet's EGL render plugin draws only bodies loaded after it)."""
         self.client, self.gui = connect(gui)
         cid = self.client
+        if on_connect is not None:
+            on_connect(cid)
         p.setTimeStep(config.max_step_size, physicsClientId=cid)
         p.setGravity(*config.gravity, physicsClientId=cid)
         if self.gui:
@@ -76,8 +79,9 @@ class World:
             bodies.append(p.createMultiBody(0, col, vis, pos, orn, physicsClientId=cid))
         return bodies
 
-    def load_robot(self, urdf_path, position, orientation, fixed_base):
-        robot = Robot(self.client, urdf_path, position, orientation, fixed_base)
+    def load_robot(self, urdf_path, position, orientation, fixed_base, options=None):
+        """``options``: description.gazebo_tags.BodyOptions of the URDF, None for none."""
+        robot = Robot(self.client, urdf_path, position, orientation, fixed_base, options)
         self.robots.append(robot)
         return robot
 
@@ -86,9 +90,14 @@ class World:
         robot.remove()
 
     def step(self):
+        gravity = None
         for robot in self.robots:
             if robot.mimics:
                 robot.follow_mimics()
+            if robot.gravity_off:
+                if gravity is None:
+                    gravity = _gravity(self.client)
+                _cancel_weight(robot, gravity)
         p.stepSimulation(physicsClientId=self.client)
 
     def reset(self):
@@ -98,3 +107,28 @@ class World:
     def close(self):
         if p.isConnected(self.client):
             p.disconnect(self.client)
+
+
+def _gravity(client):
+    """The world's gravity now (set_physics_properties may have changed it)."""
+    params = p.getPhysicsEngineParameters(physicsClientId=client)
+    return (
+        params['gravityAccelerationX'],
+        params['gravityAccelerationY'],
+        params['gravityAccelerationZ'],
+    )
+
+
+def _cancel_weight(robot, gravity):
+    """Gazebo's per-link gravity off (pybullet has none): -m g at each such link's centre of
+    mass, for the next step only (pybullet clears external forces after a step)."""
+    cid = robot.client
+    for index, mass in robot.gravity_off:
+        if index == -1:
+            com = p.getBasePositionAndOrientation(robot.body, physicsClientId=cid)[0]
+        else:
+            com = p.getLinkState(
+                robot.body, index, computeForwardKinematics=True, physicsClientId=cid
+            )[0]
+        force = (-mass * gravity[0], -mass * gravity[1], -mass * gravity[2])
+        p.applyExternalForce(robot.body, index, force, com, p.WORLD_FRAME, physicsClientId=cid)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import collections
 import struct
 import threading
-from typing import Any, Deque, Tuple
+from typing import Any, Callable, Deque, Tuple
 
 import rospy
 from sensor_msgs.msg import CameraInfo, Image
@@ -20,13 +20,21 @@ from sensor_msgs.msg import CameraInfo, Image
 from ..description.camera_sensor import CameraSensor
 from ..physics.camera_geometry import intrinsics
 from ..physics.sensor_manager import Camera, Pixels
+from .frames import tf_prefix, tf_resolve
 from .node_handle import to_time
 
 MAX_PENDING_IMAGES = 2  # frames waiting for the publishing thread; older ones are dropped
 CHUNK = 1 << 20  # bytes of pixels serialized at a time
 
 
-def camera_info(sensor: CameraSensor) -> CameraInfo:
+def camera_frame(sensor: CameraSensor) -> str:
+    """gazebo_ros_camera_utils' frame id: tf_prefix searched from ``<ns>/<cameraName>``, else the
+    robot namespace, in front of frameName."""
+    search = '/'.join(s.strip('/') for s in (sensor.robot_namespace, sensor.camera_name))
+    return tf_resolve(tf_prefix(search, sensor.robot_namespace), sensor.frame_name)
+
+
+def camera_info(sensor: CameraSensor, frame_id: str) -> CameraInfo:
     """The CameraInfo of an ideal pinhole with the sensor's size and field of view."""
     k, proj = intrinsics(sensor.width, sensor.height, sensor.horizontal_fov)
     msg = CameraInfo(
@@ -38,7 +46,7 @@ def camera_info(sensor: CameraSensor) -> CameraInfo:
         R=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
         P=proj,
     )
-    msg.header.frame_id = sensor.frame_name
+    msg.header.frame_id = frame_id
     return msg
 
 
@@ -51,17 +59,25 @@ class ChunkedImage(Image):
     """
 
     def serialize(self, buff: Any) -> None:
-        data: Any = getattr(self, 'data')
-        self.data = b''
-        try:
-            super().serialize(buff)  # everything up to a data length of 0
-        finally:
-            self.data = data
-        buff.seek(buff.tell() - 4)
-        buff.write(struct.pack('<I', len(data)))
-        view = memoryview(data)
-        for start in range(0, len(view), CHUNK):
-            buff.write(view[start : start + CHUNK])
+        serialize_chunked(self, super().serialize, buff, b'')  # data is Image's last field
+
+
+def serialize_chunked(msg: Any, serialize: Callable[[Any], None], buff: Any, tail: bytes) -> None:
+    """``serialize`` (the message type's own) run with an empty ``data``, then the real
+    length and ``data`` written over its end in CHUNK slices; ``tail``: the fields the type
+    writes after ``data``, written again after it."""
+    data: Any = getattr(msg, 'data')
+    msg.data = b''
+    try:
+        serialize(buff)  # everything up to a data length of 0, then the tail
+    finally:
+        msg.data = data
+    buff.seek(buff.tell() - 4 - len(tail))
+    buff.write(struct.pack('<I', len(data)))
+    view = memoryview(data)
+    for start in range(0, len(view), CHUNK):
+        buff.write(view[start : start + CHUNK])
+    buff.write(tail)
 
 
 class GazeboRosCamera:
@@ -72,7 +88,8 @@ class GazeboRosCamera:
         # A viewer more than 5 frames behind loses the oldest (ROS's way; Gazebo keeps 2).
         self._image_pub = rospy.Publisher(sensor.image_topic, Image, queue_size=5)
         self._info_pub = rospy.Publisher(sensor.camera_info_topic, CameraInfo, queue_size=5)
-        self._info = camera_info(sensor)
+        self.frame_id = camera_frame(sensor)
+        self._info = camera_info(sensor, self.frame_id)
         self._pending: Deque[Tuple[str, int, Pixels]] = collections.deque()
         self._cond = threading.Condition()
         self._running = True
@@ -130,7 +147,7 @@ class GazeboRosCamera:
             data=data,
         )
         msg.header.stamp = to_time(stamp_ns)
-        msg.header.frame_id = s.frame_name
+        msg.header.frame_id = self.frame_id
         self._image_pub.publish(msg)
         self.publish_info(stamp_ns)
 

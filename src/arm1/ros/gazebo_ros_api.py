@@ -6,7 +6,8 @@ changes the world is handed to the physics thread (SimThreadCalls).
 
 from __future__ import annotations
 
-from typing import Any, Callable, List, Sequence, Tuple
+import os
+from typing import Any, Callable, List, Optional, Sequence, Tuple
 
 import rosgraph.names
 import rospy
@@ -14,10 +15,20 @@ from gazebo_msgs.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from std_srvs.srv import Empty
 
 from ..description.names import shown
+from ..description.resource_paths import ResourcePaths, gazebo_paths
+from ..description.sdf_model import (
+    ModelSpawn,
+    SdfModelError,
+    model_dir_finder,
+    sdf_spawn,
+)
+from ..sim.model_state import WORLD_NAMES, State, compose, frame_state
 from ..sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
 from .camera_plugin import GazeboRosCamera
 from .controller_manager_services import ControllerManagerServices
-from .packages import find_package
+from .depth_camera_plugin import GazeboRosDepthCamera
+from .packages import find_package, gazebo_exports
+from .sensor_plugins import attach_sensor_plugins
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop
 
@@ -25,12 +36,14 @@ from .world_loop import WorldLoop
 class GazeboRosApi:
     def __init__(self, sim: Simulation, calls: SimThreadCalls, loop: WorldLoop) -> None:
         self.sim, self.calls, self.loop = sim, calls, loop
+        self._paths: Optional[ResourcePaths] = None  # model:// of SDF spawns, found once
         self._services = [
             rospy.Service('~pause_physics', Empty, self._empty(self._set_paused, True)),
             rospy.Service('~unpause_physics', Empty, self._empty(self._set_paused, False)),
             rospy.Service('~reset_simulation', Empty, self._empty(self.sim.reset_simulation)),
             rospy.Service('~reset_world', Empty, self._empty(self.sim.reset_world)),
             rospy.Service('~spawn_urdf_model', SpawnModel, self._spawn),
+            rospy.Service('~spawn_sdf_model', SpawnModel, self._spawn_sdf),
             rospy.Service('~delete_model', DeleteModel, self._delete),
             rospy.Service('~set_model_configuration', SetModelConfiguration, self._configure),
         ]
@@ -45,24 +58,64 @@ class GazeboRosApi:
     def _set_paused(self, paused: bool) -> None:
         self.loop.paused = paused
 
-    def _spawn(self, req: Any) -> Tuple[bool, str]:
+    def _spawn_sdf(self, req: Any) -> Tuple[bool, str]:
+        return self._spawn(req, sdf=True)
+
+    def _spawn(self, req: Any, sdf: bool = False) -> Tuple[bool, str]:
         pose = req.initial_pose
-        xyz = (pose.position.x, pose.position.y, pose.position.z)
-        q = (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w)
-        if q == (0, 0, 0, 0):
+        xyz: Sequence[float] = (pose.position.x, pose.position.y, pose.position.z)
+        q: Sequence[float] = (
+            pose.orientation.x,
+            pose.orientation.y,
+            pose.orientation.z,
+            pose.orientation.w,
+        )
+        if tuple(q) == (0, 0, 0, 0):
             q = (0, 0, 0, 1)
+        xml, dropped = req.model_xml, []
         try:
-            model = self.spawn(req.model_name, req.model_xml, xyz, q, req.robot_namespace)
+            xyz, q = self._in_reference_frame(req.reference_frame, xyz, q)
+            if sdf:  # an SDF <model> takes the URDF path as sdf_model's URDF; a <robot> as is
+                spawn = self._sdf_spawn(req.model_name, xml, xyz, q)
+                if spawn is not None:
+                    xml, xyz, q, dropped = (
+                        spawn.urdf,
+                        spawn.position,
+                        spawn.orientation,
+                        spawn.warnings,
+                    )
+            model = self.spawn(req.model_name, xml, xyz, q, req.robot_namespace)
         except SpawnError as exc:
             rospy.logerr(str(exc))
             return False, str(exc)
         msg = "SpawnModel: Successfully spawned entity '%s'" % model.name
+        if dropped:
+            msg += '; not built: %s' % '; '.join(dropped)
         if model.controller_manager is not None:
             msg += ' with controller manager in %s' % model.namespace
         for c in model.cameras:
             msg += '; camera %s on %s' % (c.sensor.name, c.sensor.image_topic)
         rospy.loginfo(msg)
         return True, msg
+
+    def _in_reference_frame(
+        self, reference: str, xyz: Sequence[float], quat: Sequence[float]
+    ) -> Tuple[Sequence[float], Sequence[float]]:
+        """The initial pose in the world: as upstream, given in the entity ``reference_frame``
+        names (a model or a link), the world for '', world or map; any other name refused."""
+        if reference in WORLD_NAMES:
+            return xyz, quat
+        try:
+            frame = self.calls.call(frame_state, self.sim, reference)
+        except KeyError:
+            frame = None
+        if frame is None:  # upstream's message, with the name it could not find
+            raise SpawnError(
+                'SpawnModel: reference reference_frame [%s] not found, did you forget to scope '
+                'the link by model name?' % shown(reference)[1:-1]
+            )
+        world = compose(frame, State(tuple(xyz), tuple(quat)))  # type: ignore[arg-type]
+        return world.position, world.orientation
 
     def spawn(
         self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float], namespace: str = ''
@@ -79,6 +132,26 @@ class GazeboRosApi:
             )
         prepared = self.sim.prepare_urdf(name, xml, xyz, quat, find_package)
         return self.calls.call(self._spawn_prepared, prepared, namespace)
+
+    def _sdf_spawn(
+        self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float]
+    ) -> Optional[ModelSpawn]:
+        """The SDF request as URDF (None for a URDF); SpawnError naming the culprit."""
+        if self._paths is None:
+            self._paths = gazebo_paths(os.environ, gazebo_exports())
+        paths = self._paths
+        try:
+            return sdf_spawn(
+                xml,
+                name,
+                xyz,
+                quat,
+                self.sim.limits,
+                model_dir_finder(paths.model),
+                paths.find_model,
+            )
+        except SdfModelError as exc:
+            raise SpawnError("cannot spawn '%s': %s" % (name, exc)) from None
 
     def _spawn_prepared(self, prepared: PreparedUrdf, namespace: str) -> Model:
         return self.sim.spawn_prepared(prepared, namespace, attach=self._attach_plugins)
@@ -103,7 +176,9 @@ class GazeboRosApi:
             model.controller_manager = services.manager
             model.plugins.append(services)
         for camera in model.cameras:
-            model.plugins.append(GazeboRosCamera(camera))
+            plugin = GazeboRosDepthCamera if camera.sensor.depth_plugin else GazeboRosCamera
+            model.plugins.append(plugin(camera))
+        attach_sensor_plugins(model)
 
     def _delete(self, req: Any) -> Tuple[bool, str]:
         try:

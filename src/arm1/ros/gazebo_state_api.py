@@ -8,8 +8,10 @@ someone subscribes (as Gazebo's WorldUpdateBegin connection).
 
 from __future__ import annotations
 
+import collections
 import threading
-from typing import Any, Callable, Dict, List, Optional, Tuple
+import time
+from typing import Any, Callable, Deque, Dict, List, Optional, Tuple
 
 import rospy
 from gazebo_msgs.msg import LinkState, LinkStates, ModelState, ModelStates
@@ -60,21 +62,53 @@ def states_msg(cls: Any, names: List[str], states: List[State]) -> Any:
     return cls(names, [pose_msg(s) for s in states], [twist_msg(s) for s in states])
 
 
+MESSAGES_PER_SECOND = 2000.0  # wall-time cap of each states topic: twice real time's 1 kHz
+BURST = 4  # readings the budget lets through back to back (the world runs 2 steps a wake-up)
+
+
+class RateBudget:
+    """A token bucket in wall time: at real time every step gets its message (as in Gazebo);
+    faster than that, at most ``rate`` a second, so that a subscriber to /gazebo/model_states
+    cannot halve the world's top speed (Python builds and sends each message)."""
+
+    def __init__(
+        self, rate: float, burst: int, clock: Callable[[], float] = time.monotonic
+    ) -> None:
+        self.rate, self.burst, self.clock = rate, float(burst), clock
+        self._tokens = float(burst)
+        self._last = clock()
+
+    def take(self) -> bool:
+        now = self.clock()
+        self._tokens = min(self.burst, self._tokens + (now - self._last) * self.rate)
+        self._last = now
+        if self._tokens < 1.0:
+            return False
+        self._tokens -= 1.0
+        return True
+
+
 class LatestPublisher:
     """Builds and publishes states messages on its own thread, so the physics thread only
-    reads pybullet. Keeps the latest reading: if publishing lags, older ones are dropped."""
+    reads pybullet, and only within its RateBudget. If publishing lags, the oldest readings
+    are dropped."""
 
     def __init__(self, publisher: Any, cls: Any) -> None:
         self.publisher, self.cls = publisher, cls
+        self.budget = RateBudget(MESSAGES_PER_SECOND, BURST)
         self._cond = threading.Condition()
-        self._latest: Optional[Tuple[List[str], List[State]]] = None
+        self._pending: Deque[Tuple[List[str], List[State]]] = collections.deque(maxlen=BURST)
         self._stopped = False
         self._thread = threading.Thread(target=self._run, daemon=True)
         self._thread.start()
 
+    def wanted(self) -> bool:
+        """Subscribed, and within the budget (physics thread, before gathering a reading)."""
+        return self.publisher.get_num_connections() > 0 and self.budget.take()
+
     def put(self, reading: Tuple[List[str], List[State]]) -> None:
         with self._cond:
-            self._latest = reading
+            self._pending.append(reading)
             self._cond.notify()
 
     def stop(self) -> None:
@@ -85,12 +119,11 @@ class LatestPublisher:
     def _run(self) -> None:
         while True:
             with self._cond:
-                while self._latest is None and not self._stopped:
+                while not self._pending and not self._stopped:
                     self._cond.wait()
                 if self._stopped:
                     return
-                reading, self._latest = self._latest, None
-            assert reading is not None
+                reading = self._pending.popleft()
             try:
                 self.publisher.publish(states_msg(self.cls, *reading))
             except rospy.ROSException:
@@ -154,9 +187,9 @@ class GazeboStateApi:
             self.wrenches.apply(self.sim, now_ns)
         if self.efforts.jobs:
             self.efforts.apply(self.sim, now_ns)
-        if self.model_states.get_num_connections():
+        if self._model_out.wanted():
             self._model_out.put(ms.model_states(self.sim))
-        if self.link_states.get_num_connections():
+        if self._link_out.wanted():
             self._link_out.put(ms.link_states(self.sim))
 
     def _get_model_state(self, req: Any) -> Any:

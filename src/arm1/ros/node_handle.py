@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import logging
 import warnings
-from typing import Any, Callable, Dict, List, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import rospy
 from control_msgs.msg import JointControllerState, JointTrajectoryControllerState
@@ -326,6 +326,10 @@ class _Publisher:
 
 
 class RosNodeHandle:
+    # Called after each message a subscription of a node handle delivers (rospy's thread):
+    # the world loop's Pacer.wake, so that a command does not wait out a batched sleep.
+    on_message: Optional[Callable[[], None]] = None
+
     def __init__(self, namespace: str) -> None:
         self.namespace = namespace.rstrip('/') or '/'
         params = rospy.get_param(self.namespace, {})
@@ -347,7 +351,14 @@ class RosNodeHandle:
     ) -> rospy.Subscriber:
         cls, _ = MESSAGES[type_name]
         read = READERS.get(type_name, _read_data)
-        sub = rospy.Subscriber(self._name(topic), cls, lambda m: callback(read(m)), queue_size=1)
+
+        def deliver(msg: Any) -> None:
+            callback(read(msg))
+            wake = RosNodeHandle.on_message
+            if wake is not None:
+                wake()
+
+        sub = rospy.Subscriber(self._name(topic), cls, deliver, queue_size=1)
         self._handles.append(sub)
         return sub
 

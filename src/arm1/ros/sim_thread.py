@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import collections
 import threading
-from typing import Any, Callable, Deque
+from typing import Any, Callable, Deque, Optional
 
 import rospy
 
@@ -17,6 +17,9 @@ class SimThreadCalls:
     def __init__(self) -> None:
         self._calls: Deque[Callable[[], None]] = collections.deque()
         self._sim_thread = threading.main_thread()
+        # Called after a call is handed over (the world loop's Pacer.wake: no batched sleep
+        # holds it up).
+        self.on_call: Optional[Callable[[], None]] = None
 
     def call(self, fn: Callable[..., Any], *args: Any) -> Any:
         """``fn(*args)`` on the physics thread; its result, or its exception raised here."""
@@ -32,6 +35,8 @@ class SimThreadCalls:
             done.set()
 
         self._calls.append(run)
+        if self.on_call is not None:
+            self.on_call()
         while not done.wait(0.5):
             if rospy.is_shutdown():
                 raise rospy.ServiceException('simulation shut down')

@@ -1,7 +1,6 @@
 """``rosrun arm1 spawn_model``: gazebo_ros's spawn_model, against the stand-in world."""
 
 import argparse
-import math
 import sys
 import time
 
@@ -10,31 +9,25 @@ from gazebo_msgs.srv import SetModelConfiguration, SpawnModel
 from geometry_msgs.msg import Pose
 from std_srvs.srv import Empty
 
-
-def quaternion_from_rpy(roll, pitch, yaw):
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-        cr * cp * cy + sr * sp * sy,
-    )
+from ..description.pose_math import quat_from_rpy
 
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(
         prog='spawn_model',
         description=(
-            'Spawn a URDF model into the stand-in world (gazebo_ros spawn_model arguments).'
+            'Spawn a URDF or SDF model into the stand-in world (gazebo_ros spawn_model arguments).'
         ),
     )
     source = parser.add_mutually_exclusive_group(required=True)
-    source.add_argument('-param', help='parameter holding the URDF (e.g. robot_description)')
-    source.add_argument('-file', help='URDF file')
-    parser.add_argument('-urdf', action='store_true', help='the model is URDF (the only kind)')
-    parser.add_argument('-sdf', action='store_true', help='not supported by the stand-in')
+    source.add_argument('-param', help='parameter holding the model (e.g. robot_description)')
+    source.add_argument('-file', help='model file')
+    source.add_argument(
+        '-database', help='model NAME found on GAZEBO_MODEL_PATH (model://NAME), spawned as SDF'
+    )
+    kind = parser.add_mutually_exclusive_group()
+    kind.add_argument('-urdf', action='store_true', help='the model is URDF (the default)')
+    kind.add_argument('-sdf', action='store_true', help='the model is SDF (spawn_sdf_model)')
     parser.add_argument('-model', required=True, help='model name')
     for axis in ('x', 'y', 'z', 'R', 'P', 'Y'):
         parser.add_argument('-' + axis, type=float, default=0.0)
@@ -89,10 +82,14 @@ def main(argv=None):
     rospy.init_node('spawn_model', anonymous=True)
     if args.robot_namespace is None:
         args.robot_namespace = rospy.get_namespace()  # as upstream: the caller's, '/' at top
-    if args.sdf:
-        rospy.logfatal('spawn_model: -sdf models are not supported by the stand-in; use -urdf')
-        return 1
-    if args.param:
+    if args.database:
+        # as upstream: a world that includes the model, for spawn_sdf_model
+        args.sdf = True
+        xml = (
+            '<?xml version="1.0" ?><sdf version="1.5"><world name="default"><include>'
+            '<uri>model://%s</uri></include></world></sdf>' % args.database
+        )
+    elif args.param:
         xml = wait_for_param(args.param, args.timeout)
         if xml is None:
             rospy.logfatal(
@@ -110,7 +107,7 @@ def main(argv=None):
             rospy.logfatal('spawn_model: cannot read %s: %s', args.file, exc.strerror)
             return 1
     ns = args.gazebo_namespace.rstrip('/')
-    spawn_name = ns + '/spawn_urdf_model'
+    spawn_name = ns + ('/spawn_sdf_model' if args.sdf else '/spawn_urdf_model')
     rospy.loginfo('spawn_model: waiting for service %s', spawn_name)
     try:
         rospy.wait_for_service(spawn_name, args.timeout)
@@ -123,7 +120,7 @@ def main(argv=None):
         return 1
     pose = Pose()
     pose.position.x, pose.position.y, pose.position.z = args.x, args.y, args.z
-    q = quaternion_from_rpy(args.R, args.P, args.Y)
+    q = quat_from_rpy(args.R, args.P, args.Y)
     pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w = q
     resp = rospy.ServiceProxy(spawn_name, SpawnModel)(
         args.model, xml, args.robot_namespace, pose, args.reference_frame

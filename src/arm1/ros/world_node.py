@@ -17,7 +17,7 @@ from ..description.limits import LimitError, Limits
 from ..description.resource_paths import ResourceNotFound, gazebo_paths
 from ..description.sdf_world import SdfError, WorldConfig, read_world
 from ..sim.pacer import Pacer, wall_period
-from ..sim.simulation import Model, Simulation
+from ..sim.simulation import Model, Simulation, SpawnError
 from .gazebo_ros_api import GazeboRosApi
 from .gazebo_state_api import GazeboStateApi
 from .master_watch import MasterWatch
@@ -51,6 +51,16 @@ class WorldNode:
         self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float], namespace: str = ''
     ) -> Model:
         return self.api.spawn(name, xml, xyz, quat, namespace)
+
+    def spawn_world_models(self) -> None:
+        """The world file's models (sdf_world), spawned as a request's would be, before
+        physics starts; one that fails is reported with the world's other skipped parts."""
+        config = self.sim.config
+        for s in config.spawns:
+            try:
+                self.spawn(s.name, s.urdf, s.position, s.orientation)
+            except SpawnError as exc:
+                config.skipped.append((s.name, str(exc)))
 
     def run(self, pacer: Pacer) -> None:
         self.pacer = pacer
@@ -112,9 +122,10 @@ def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
     except (SdfError, LimitError, ResourceNotFound) as exc:
         rospy.logfatal(str(exc))
         sys.exit(1)
+    node = WorldNode(Simulation(config, gui=args.gui), paused=args.paused)
+    node.spawn_world_models()
     if config.skipped:
         rospy.logwarn('world: not built: %s', '; '.join('%s (%s)' % s for s in config.skipped))
-    node = WorldNode(Simulation(config, gui=args.gui), paused=args.paused)
     period = wall_period(
         config.max_step_size, config.real_time_factor, config.real_time_update_rate
     )

@@ -10,6 +10,9 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
+from ..description.pose_math import conjugate as q_inv
+from ..description.pose_math import multiply as q_mul
+from ..description.pose_math import normalized, quat_from_rpy, rotate
 from ..physics import body_state
 from .simulation import Model, Simulation
 
@@ -30,36 +33,6 @@ class State:
     orientation: Quat = (0.0, 0.0, 0.0, 1.0)
     linear: Vec = (0.0, 0.0, 0.0)
     angular: Vec = (0.0, 0.0, 0.0)
-
-
-# --- quaternions (x, y, z, w) -------------------------------------------------------------
-
-
-def q_mul(a: Sequence[float], b: Sequence[float]) -> Quat:
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-        aw * bw - ax * bx - ay * by - az * bz,
-    )
-
-
-def q_inv(q: Sequence[float]) -> Quat:
-    return (-q[0], -q[1], -q[2], q[3])
-
-
-def rotate(q: Sequence[float], v: Sequence[float]) -> Vec:
-    x, y, z, _ = q_mul(q_mul(q, (v[0], v[1], v[2], 0.0)), q_inv(q))
-    return (x, y, z)
-
-
-def normalized(q: Sequence[float]) -> Quat:
-    n = math.sqrt(sum(c * c for c in q))
-    if n == 0:
-        return (0.0, 0.0, 0.0, 1.0)  # as upstream: all-zero becomes identity
-    return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
 
 
 def _sub(a: Sequence[float], b: Sequence[float]) -> Vec:
@@ -111,18 +84,6 @@ def model_state(model: Model) -> State:
     return State(pos, orn, lin, ang)
 
 
-def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-        cr * cp * cy + sr * sp * sy,
-    )
-
-
 def scenery(sim: Simulation) -> Dict[str, State]:
     """The world file's static models (ground_plane, ...): fixed poses, no twist."""
     out: Dict[str, State] = {}
@@ -146,6 +107,9 @@ def find_link(sim: Simulation, name: str) -> Optional[Tuple[Model, str]]:
             return model, link
         return None
     for model in sim.models.values():
+        # A URDF's root link 'world' is Gazebo's world, no link of the model (URDF -> SDF).
+        if name == 'world' == model.description.root_link:
+            continue
         if name in model.robot.link_index:
             return model, name
     return None

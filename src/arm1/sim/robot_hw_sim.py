@@ -288,6 +288,14 @@ class DefaultRobotHWSim:
             if d.handle.interface == EFFORT_JOINT_INTERFACE or d.pid is not None
         ]
         self._torque_indices = [d.index for d in self._torque]
+        # Effort joints without soft limits (all of them, usually): write saturates them inline.
+        self._plain_efforts = [
+            (d.handle,) + d.bounds
+            for d in self._torque
+            if d.handle.interface == EFFORT_JOINT_INTERFACE and d.handle.limits.soft is None
+        ]
+        if len(self._plain_efforts) < len(self._torque):
+            self._plain_efforts = []
         self._teleported = [
             d
             for d in self._drives
@@ -334,6 +342,33 @@ class DefaultRobotHWSim:
             h.position, h.velocity = pos, vel
 
     def write(self) -> None:
+        if self._plain_efforts:
+            self.robot.apply_efforts(self._torque_indices, self._saturated_efforts())
+        else:
+            self._write_torques()
+        if self._teleported or self._motored:
+            self._write_set_joints()
+
+    def _saturated_efforts(self) -> List[float]:
+        """saturate_effort written out inline for each joint of _plain_efforts (the usual
+        robot: every joint an EffortJointInterface without soft limits); sets each handle's
+        effort. Same comparisons in the same order as saturate_effort: the same efforts."""
+        isfinite = math.isfinite
+        efforts = []
+        for h, max_effort, lower, upper, max_velocity in self._plain_efforts:
+            command = h.command
+            if isfinite(command):
+                position, velocity = h.position, h.velocity
+                hi = 0.0 if position > upper or velocity > max_velocity else max_effort
+                lo = 0.0 if position < lower or velocity < -max_velocity else -max_effort
+                effort = hi if command > hi else lo if command < lo else command
+            else:
+                effort = 0.0
+            h.effort = effort
+            efforts.append(effort)
+        return efforts
+
+    def _write_torques(self) -> None:
         dt = self.period
         efforts = []
         for d in self._torque:
@@ -356,6 +391,9 @@ class DefaultRobotHWSim:
             h.effort = effort
             efforts.append(effort)
         self.robot.apply_efforts(self._torque_indices, efforts)
+
+    def _write_set_joints(self) -> None:
+        dt = self.period
         if self._teleported:
             positions = []
             for d in self._teleported:

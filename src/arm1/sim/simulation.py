@@ -16,15 +16,19 @@ from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tupl
 from ..control.controller_manager import ControllerManager
 from ..control.loop import ControlLoop, control_period_ns
 from ..description.camera_sensor import CameraSensor, camera_sensors
+from ..description.gazebo_tags import BodyOptions, prepare_body
 from ..description.limits import LimitError
-from ..description.massless import lighten
 from ..description.names import IllegalName, check_name, shown
 from ..description.sdf_world import WorldConfig
 from ..description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
+from ..physics.contact import set_collision_namer
+from ..physics.laser import ray_casts_per_second
 from ..physics.robot import Robot, RobotLoadError
 from ..physics.sensor_manager import Camera, SensorManager
+from ..physics.sim_sensor import SimSensor
 from ..physics.world import World
 from .robot_hw_sim import DefaultRobotHWSim
+from .sensor_plugins import build_sensors
 
 
 class SpawnError(ValueError):
@@ -49,6 +53,7 @@ class Model:
     control: Optional[ControlLoop] = None  # when its controllers update; with the manager
     namespace: str = ''
     cameras: List[Camera] = field(default_factory=list)  # one per camera sensor
+    sensors: List[SimSensor] = field(default_factory=list)  # measured on the physics thread
     plugins: List[Plugin] = field(default_factory=list)  # the ROS layer's part, shut down on delete
     file: str = ''  # the URDF file pybullet and the render processes load, in the world's folder
 
@@ -60,7 +65,8 @@ class PreparedUrdf:
     name: str
     description: RobotModel
     sensors: List[CameraSensor]
-    load_args: Tuple[str, Tuple[float, ...], Tuple[float, ...], bool]  # World.load_robot's
+    # World.load_robot's: file, position, orientation, fixed base, BodyOptions
+    load_args: Tuple[str, Tuple[float, ...], Tuple[float, ...], bool, BodyOptions]
 
 
 ControllerManagerFactory = Callable[[DefaultRobotHWSim, str], ControllerManager]
@@ -76,11 +82,25 @@ class Simulation:
         self.steps = 0
         self.models: Dict[str, Model] = {}
         self._controlled: List[Model] = []  # models with a controller manager, in spawn order
+        self._sensors: List[SimSensor] = []  # every model's physics sensors, in spawn order
         self._tmp = tempfile.TemporaryDirectory(prefix='arm1-sim-')
         self._files = itertools.count(1)  # the world names its files itself, never from requests
         self.sensors = SensorManager(world_config)
         # Called with the sim time before each physics step (wrenches, model_states).
         self.before_step: List[Callable[[int], None]] = []
+        set_collision_namer(self.world.client, self.collision_name)
+
+    def collision_name(self, body: int, link: int) -> str:
+        """Gazebo's scoped name of a pybullet body's link collision, for contact sensors."""
+        for model in self.models.values():
+            if model.robot.body == body:
+                for name, index in model.robot.link_index.items():
+                    if index == link:
+                        return '%s::%s::%s_collision' % (model.name, name, name)
+        for static, bodies in zip(self.config.models, getattr(self.world, 'scenery', [])):
+            if body in bodies:
+                return '%s::link::collision' % static.name
+        return 'body%d::link%d' % (body, link)
 
     @property
     def time_ns(self) -> int:
@@ -135,7 +155,8 @@ class Simulation:
         try:
             description = parse_urdf(urdf_xml, limits)
             resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages, limits)
-            resolved = lighten(resolved, name)  # frame links weigh nothing, as in Gazebo
+            # As Gazebo's URDF->SDF: fixed joints lumped, frames weightless, <gazebo> tags
+            resolved, options = prepare_body(resolved, description, name)
             sensors = camera_sensors(description, limits)
         except (UrdfError, LimitError) as exc:
             raise SpawnError("cannot spawn '%s': %s" % (name, exc))
@@ -146,7 +167,7 @@ class Simulation:
             name,
             description,
             sensors,
-            (path, tuple(position), tuple(orientation), description.root_link == 'world'),
+            (path, tuple(position), tuple(orientation), description.root_link == 'world', options),
         )
 
     def spawn_prepared(
@@ -182,6 +203,19 @@ class Simulation:
                 for c in prepared.sensors
             ]
             model.cameras = self.sensors.add_robot(name, prepared.load_args, sensors)
+            model.sensors = build_sensors(
+                name, model.description, robot, robot_namespace, self.limits
+            )
+            # All lasers together, as cameras are: each is cast on this (the physics) thread.
+            rays = ray_casts_per_second(model.sensors, self.limits.sensor_update_rate)
+            if rays:
+                others = ray_casts_per_second(self._sensors, self.limits.sensor_update_rate)
+                self.limits.check(
+                    'ray_casts_per_second',
+                    rays + others,
+                    "model '%s''s ray sensors with the world's others" % name,
+                )
+            self._sensors.extend(model.sensors)
             if attach is not None:
                 attach(model)
             plugin, manager = model.description.control_plugin, model.controller_manager
@@ -205,7 +239,11 @@ class Simulation:
         plugin = model.description.control_plugin
         if plugin is None:
             return
-        ns = plugin.robot_namespace or robot_namespace or model.name
+        # As gazebo_ros_control after Gazebo's spawn: the plugin's own <robotNamespace> (even
+        # empty), else the request's (written into plugins without one), else the model name.
+        ns = plugin.robot_namespace
+        if ns is None:
+            ns = robot_namespace or model.name
         model.namespace = '/' + ns.strip('/')
         model.hw = DefaultRobotHWSim(model.description, model.robot, self.period)
         if factory is not None:
@@ -220,6 +258,11 @@ class Simulation:
         for plugin in reversed(model.plugins):
             plugin.shutdown()
         model.plugins = []
+        for sensor in model.sensors:
+            sensor.close()
+            if sensor in self._sensors:
+                self._sensors.remove(sensor)
+        model.sensors = []
         self.sensors.remove_robot(model.name)
         if model.robot in self.world.robots:
             self.world.remove_robot(model.robot)
@@ -265,6 +308,8 @@ class Simulation:
             hook(now)
         self.world.step()
         self.steps += 1
+        for sensor in self._sensors:
+            sensor.update(self.time_ns)
         if self.sensors.cameras:
             self.sensors.update(self.time_ns, self._robot_states)
 
@@ -274,11 +319,18 @@ class Simulation:
     def reset_world(self) -> None:
         """Robots back to their spawn poses, joints to zero; time goes on."""
         self.world.reset()
+        self._reset_plugins()
 
     def reset_simulation(self) -> None:
         """As reset_world, and time back to zero."""
         self.world.reset()
         self.steps = 0
+        self._reset_plugins()
+
+    def _reset_plugins(self) -> None:
+        """As Gazebo's World::Reset: every model plugin's Reset()."""
+        for sensor in self._sensors:
+            sensor.reset()
 
     def close(self) -> None:
         self.sensors.close()

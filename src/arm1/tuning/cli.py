@@ -18,6 +18,7 @@ from typing import IO, List, Optional
 from .bag_report import run_bag
 from .inputs import Setup
 from .metrics import Criteria
+from .search import EvaluatorError
 from .session import tune
 from .steps import ARM1_POSES, ARM1_START, Protocol
 
@@ -96,8 +97,15 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
     ap.add_argument(
         '--workers',
         type=int,
-        default=min(2, os.cpu_count() or 1),
-        help='processes for the search (%(default)s)',
+        help='simulations run at once by the search (default: %d here; with --ray ADDRESS, one '
+        'per CPU of the cluster)' % min(2, os.cpu_count() or 1),
+    )
+    ap.add_argument(
+        '--ray',
+        metavar='ADDRESS',
+        help='run the search\'s simulations on the Ray cluster whose head is at ADDRESS '
+        '(HOST:6379, or auto), or on a Ray started here with "local"; the same seed gives '
+        'the same gains as without',
     )
     ap.add_argument('--seed', type=int, default=0, help='random seed of the search')
     ap.add_argument('--plot', metavar='DIR', help='write PNG plots of the responses to DIR')
@@ -118,7 +126,10 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
         default=0.05,
         help='with --bag: smallest command change that counts as a step, rad',
     )
-    return ap.parse_args(argv)
+    args = ap.parse_args(argv)
+    if args.workers is None and args.ray in (None, 'local'):  # a cluster's: its CPU count
+        args.workers = min(2, os.cpu_count() or 1)
+    return args
 
 
 def main(argv: Optional[List[str]] = None, out: IO[str] = sys.stdout) -> int:
@@ -126,7 +137,11 @@ def main(argv: Optional[List[str]] = None, out: IO[str] = sys.stdout) -> int:
     setup = Setup(args)
     if args.bag:
         return run_bag(args, setup, out)
-    return tune(args, setup, out)
+    try:
+        return tune(args, setup, out)
+    except EvaluatorError as exc:
+        print('tune: %s' % exc, file=sys.stderr)
+        return 2
 
 
 if __name__ == '__main__':

@@ -91,7 +91,7 @@ def check_gains(
 def tune(args: argparse.Namespace, setup: Setup, out: IO[str]) -> int:
     t0 = time.monotonic()
     # fork the search's workers before this process builds a world of its own
-    evaluator = Evaluator(setup.rig, args.workers) if args.search else None
+    evaluator = Evaluator(setup.rig, args.workers or 0, args.ray) if args.search else None
     rig = setup.rig()
     try:
         joints = args.joints.split(',') if args.joints else rig.joints
