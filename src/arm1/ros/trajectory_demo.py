@@ -16,6 +16,8 @@ from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal
 from trajectory_msgs.msg import JointTrajectoryPoint
 
+from ..control.joint_trajectory_controller import ERROR_CODE_NAMES
+
 JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
 # (seconds from start, positions): out to one side, to the other, back up.
 WAYPOINTS = [
@@ -23,14 +25,6 @@ WAYPOINTS = [
     (4.0, [-0.6, 0.5, 0.2, -0.2]),
     (6.0, [0.0, 1.0, 0.0, 0.0]),
 ]
-ERRORS = {
-    0: 'SUCCESSFUL',
-    -1: 'INVALID_GOAL',
-    -2: 'INVALID_JOINTS',
-    -3: 'OLD_HEADER_TIMESTAMP',
-    -4: 'PATH_TOLERANCE_VIOLATED',
-    -5: 'GOAL_TOLERANCE_VIOLATED',
-}
 STATES = {v: k for k, v in vars(GoalStatus).items() if k.isupper() and isinstance(v, int)}
 
 
@@ -75,7 +69,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         % (
             STATES.get(state, state),
             code,
-            ERRORS.get(code, '?') if code is not None else '-',
+            ERROR_CODE_NAMES.get(code, '?') if code is not None else '-',
             result.error_string if result is not None else '',
         )
     )

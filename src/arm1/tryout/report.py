@@ -2,14 +2,8 @@
 
 from typing import Any, Dict, List
 
-GOAL_CODES = {
-    0: 'SUCCESSFUL',
-    -1: 'INVALID_GOAL',
-    -2: 'INVALID_JOINTS',
-    -3: 'OLD_HEADER_TIMESTAMP',
-    -4: 'PATH_TOLERANCE_VIOLATED',
-    -5: 'GOAL_TOLERANCE_VIOLATED',
-}
+from ..control.joint_trajectory_controller import ERROR_CODE_NAMES
+
 MAX_WARNINGS_SHOWN = 25
 
 
@@ -46,7 +40,7 @@ def _motion_line(m: Dict[str, Any]) -> str:
         return 'error: %s' % m['error']
     if 'error_code' in m or 'finished' in m:
         code = m.get('error_code')
-        name = GOAL_CODES.get(code, str(code)) if code is not None else 'no result'
+        name = ERROR_CODE_NAMES.get(code, str(code)) if code is not None else 'no result'
         text = 'FollowJointTrajectory over %d joints: %s' % (len(m.get('joints', [])), name)
         if m.get('error_string'):
             text += ' (%s)' % m['error_string']
