@@ -391,7 +391,11 @@ class FaultsLifecycle(unittest.TestCase):
                 wait_for(lambda: self.published(remote, '/clock'), 15),
                 'the world did not register again:\n%s' % '\n'.join(world_log.lines),
             )
-            remote.lookupService('/gazebo/spawn_urdf_model')
+            # Topics and services register one by one: /clock may come back first.
+            self.assertTrue(
+                wait_for(lambda: self.provides(remote, '/gazebo/spawn_urdf_model'), 15),
+                'the /gazebo services did not register again:\n%s' % '\n'.join(world_log.lines),
+            )
             printer = start(sys.executable, '-c', CLOCK_PRINTER)
             procs.append(printer)
             after = LineReader(printer)
@@ -408,6 +412,13 @@ class FaultsLifecycle(unittest.TestCase):
                 if proc.poll() is None:
                     proc.kill()
                     proc.wait(10)
+
+    @staticmethod
+    def provides(master, service):
+        try:
+            return bool(master.lookupService(service))
+        except (OSError, rosgraph.MasterException):
+            return False
 
     @staticmethod
     def published(master, topic):
