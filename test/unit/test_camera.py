@@ -582,6 +582,29 @@ def test_a_killed_render_process_is_replaced_and_the_world_steps_on(world_sim, c
     )
 
 
+def test_a_killed_render_process_is_named_by_its_signal_whichever_end_notices(world_sim):
+    """The reader may see the end first, or a request may find the pipe broken first (CI
+    saw "Broken pipe" alone): either way the message says what happened to the process."""
+    sim = world_sim()
+    model = sim.spawn_urdf('cam', camera_on_a_box(), position=(0, 0, 0.05))
+    frames = watched(model.cameras[0])
+    step_until(sim, lambda: len(frames) >= 1, 30)
+    victim = sim.sensors.renderers[0]
+    os.kill(victim.pid, signal.SIGKILL)
+    victim.process.wait(10)
+    victim._reader.join(10)
+    victim._gone = None  # as if the reader had not seen the end yet: the write finds out
+    message = None
+    for _ in range(50):  # a write may still go into the socket's buffer: the next one fails
+        try:
+            victim.send(('ping',))
+        except RenderError as exc:
+            message = str(exc)
+            break
+        time.sleep(0.01)
+    assert message == 'render process %d is gone: it was killed by signal 9' % victim.pid
+
+
 @pytest.mark.parametrize('lockstep', [False, True], ids=['default', 'lockstep'])
 def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(
     world_sim, lockstep, monkeypatch

@@ -207,22 +207,25 @@ class RenderProcess:
                     self._replies.append((kind, payload))
                     self._cond.notify()
         except (EOFError, OSError, ValueError) as exc:
-            code = self.process.poll()
-            if code is None:
-                try:
-                    code = self.process.wait(1.0)
-                except subprocess.TimeoutExpired:
-                    pass
-            why = (
-                'it exited with status %s' % code
-                if code is not None and code >= 0
-                else 'it was killed by signal %d' % -code
-                if code is not None
-                else 'its connection closed (%s)' % (exc or type(exc).__name__)
-            )
+            why = self._exit_reason(exc)
             with self._cond:
                 self._gone = 'render process %d is gone: %s' % (self.pid, why)
                 self._cond.notify()
+
+    def _exit_reason(self, exc: BaseException, wait: float = 1.0) -> str:
+        """Why the connection broke, as the process's exit says it (waits ``wait`` s for it:
+        its end of the socket closes a moment before it can be reaped)."""
+        code = self.process.poll()
+        if code is None:
+            try:
+                code = self.process.wait(wait)
+            except subprocess.TimeoutExpired:
+                pass
+        if code is None:
+            return 'its connection closed (%s)' % (exc or type(exc).__name__)
+        if code >= 0:
+            return 'it exited with status %s' % code
+        return 'it was killed by signal %d' % -code
 
     def _receive_pixels(self, nbytes: int) -> memoryview:
         # np.empty: no zeroing; recv_into fills it without the GIL
@@ -241,7 +244,10 @@ class RenderProcess:
         try:
             self._conn.send(message)
         except (OSError, ValueError) as exc:
-            raise RenderError('render process %d is gone (%s)' % (self.pid, exc))
+            # A write can find the pipe broken before the reader has seen the end: name the
+            # cause the same way, waiting only briefly (this is the physics thread).
+            why = self._exit_reason(exc, wait=0.05)
+            raise RenderError('render process %d is gone: %s' % (self.pid, why))
 
     def ready(self) -> bool:
         """Is a reply waiting (or is the process gone, which receive() then raises)?"""
