@@ -11,15 +11,14 @@ from __future__ import annotations
 
 import io
 import os
-import statistics
 import tempfile
-import time
-from typing import Any, Callable, Dict, List
+from typing import Any, Dict
 
 from ..description.camera_sensor import OPENNI_KINECT_PLUGIN, CameraSensor
 from ..description.sdf_world import WorldConfig
 from ..physics import depth_camera, renderers
 from ..physics.render_process import render
+from .probes import median_ms
 
 WALL_URDF = """<robot name="wall">
   <link name="world"/>
@@ -47,15 +46,6 @@ def sensor(width: int = 640, height: int = 480) -> CameraSensor:
     )
 
 
-def _median_ms(fn: Callable[[], object], count: int) -> float:
-    times: List[float] = []
-    for _ in range(count):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times) * 1000.0
-
-
 def depth_frame(count: int = 60) -> Dict[str, Any]:
     """Median milliseconds over ``count`` frames of each part, and their sum."""
     from sensor_msgs.msg import PointCloud2
@@ -74,7 +64,7 @@ def depth_frame(count: int = 60) -> Dict[str, Any]:
         try:
             frame = render(world.client, s, *CAMERA_POSE, backend)
             image, depth = depth_camera.split_frame(s, frame)
-            render_ms = _median_ms(lambda: render(world.client, s, *CAMERA_POSE, backend), count)
+            render_ms = median_ms(lambda: render(world.client, s, *CAMERA_POSE, backend), count)
         finally:
             backend.close()
             world.close()
@@ -100,8 +90,8 @@ def depth_frame(count: int = 60) -> Dict[str, Any]:
         )
         msg.serialize(io.BytesIO())
 
-    depth_ms = _median_ms(depth_image, count)
-    points_ms = _median_ms(points, count)
+    depth_ms = median_ms(depth_image, count)
+    points_ms = median_ms(points, count)
     return {
         'frame_ms': render_ms + depth_ms + points_ms,
         'render_ms': render_ms,

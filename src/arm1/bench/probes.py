@@ -1,13 +1,24 @@
-"""What a process costs (psutil), and what machine the benchmark ran on."""
+"""What a process or a call costs, and what machine the benchmark ran on."""
 
 from __future__ import annotations
 
 import os
 import platform
+import statistics
 import time
-from typing import Dict, Iterable
+from typing import Callable, Dict, Iterable, List
 
 import psutil
+
+
+def median_ms(fn: Callable[[], object], count: int) -> float:
+    """Median wall milliseconds of ``count`` calls of ``fn``."""
+    times: List[float] = []
+    for _ in range(count):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return statistics.median(times) * 1000.0
 
 
 def cpu_seconds(pids: Iterable[int]) -> float:

@@ -11,13 +11,12 @@ the physics thread per scan.
 from __future__ import annotations
 
 import io
-import statistics
-import time
-from typing import Any, Callable, Dict, List
+from typing import Any, Dict
 
 from ..description.sdf_world import WorldConfig
 from ..physics.laser import Laser
 from ..sim.simulation import Simulation
+from .probes import median_ms
 
 RAY = """<ray><scan><horizontal><samples>%d</samples><resolution>1</resolution>
   <min_angle>-1.570796</min_angle><max_angle>1.570796</max_angle></horizontal></scan>
@@ -66,15 +65,6 @@ WALLS = [
 ]
 
 
-def _median_ms(fn: Callable[[], object], count: int) -> float:
-    times: List[float] = []
-    for _ in range(count):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times) * 1000.0
-
-
 def laser_scan(count: int = 200, rays: int = 720) -> Dict[str, Any]:
     """Median milliseconds over ``count`` scans of each part, and their sum."""
     from ..ros.laser_plugin import laser_message
@@ -88,12 +78,12 @@ def laser_scan(count: int = 200, rays: int = 720) -> Dict[str, Any]:
         sim.step()
         reading = laser.measure(sim.time_ns)
         finite = int((abs(reading.ranges) < 1e9).sum())
-        cast_ms = _median_ms(lambda: laser.measure(sim.time_ns), count)
+        cast_ms = median_ms(lambda: laser.measure(sim.time_ns), count)
 
         def message() -> None:
             laser_message(sim.time_ns, 'hokuyo_link', laser, reading).serialize(io.BytesIO())
 
-        message_ms = _median_ms(message, count)
+        message_ms = median_ms(message, count)
     finally:
         sim.close()
     return {
