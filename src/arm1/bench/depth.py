@@ -48,10 +48,7 @@ def sensor(width: int = 640, height: int = 480) -> CameraSensor:
 
 def depth_frame(count: int = 60) -> Dict[str, Any]:
     """Median milliseconds over ``count`` frames of each part, and their sum."""
-    from sensor_msgs.msg import PointCloud2
-
-    from ..ros.camera_plugin import ChunkedImage
-    from ..ros.depth_camera_plugin import ChunkedPointCloud2, point_fields
+    from ..ros.depth_camera_plugin import depth_image_message, point_cloud_message, point_fields
 
     s = sensor()
     backend = renderers.open_backend()
@@ -70,25 +67,13 @@ def depth_frame(count: int = 60) -> Dict[str, Any]:
             world.close()
 
     def depth_image() -> None:
-        encoding, step, data = depth_camera.depth_image(s, depth)
-        msg = ChunkedImage(height=s.height, width=s.width, encoding=encoding, step=step, data=data)
-        msg.serialize(io.BytesIO())
+        depth_image_message(s, depth).serialize(io.BytesIO())
 
     fields = point_fields()
     cloud = depth_camera.PointCloudBuilder(s)
 
     def points() -> None:
-        data, dense = cloud.build(depth, image)
-        msg: PointCloud2 = ChunkedPointCloud2(
-            height=s.height,
-            width=s.width,
-            fields=fields,
-            point_step=depth_camera.POINT_STEP,
-            row_step=depth_camera.POINT_STEP * s.width,
-            data=data,
-            is_dense=dense,
-        )
-        msg.serialize(io.BytesIO())
+        point_cloud_message(s, fields, cloud, depth, image).serialize(io.BytesIO())
 
     depth_ms = median_ms(depth_image, count)
     points_ms = median_ms(points, count)

@@ -44,6 +44,31 @@ def point_fields() -> list:
     ]
 
 
+def depth_image_message(s: Any, depth: Any) -> ChunkedImage:
+    """The depth Image of one frame (header left to the caller)."""
+    encoding, step, pixels = depth_camera.depth_image(s, depth)
+    return ChunkedImage(
+        height=s.height, width=s.width, encoding=encoding, is_bigendian=0, step=step, data=pixels
+    )
+
+
+def point_cloud_message(
+    s: Any, fields: list, cloud: depth_camera.PointCloudBuilder, depth: Any, image: Any
+) -> ChunkedPointCloud2:
+    """The organised PointCloud2 of one frame (header left to the caller)."""
+    points, dense = cloud.build(depth, image)
+    return ChunkedPointCloud2(
+        height=s.height,
+        width=s.width,
+        fields=fields,
+        is_bigendian=False,
+        point_step=depth_camera.POINT_STEP,
+        row_step=depth_camera.POINT_STEP * s.width,
+        data=points,
+        is_dense=dense,
+    )
+
+
 class GazeboRosDepthCamera(GazeboRosCamera):
     def __init__(self, camera: Camera) -> None:
         """``camera`` is a depth camera (``sensor.depth_plugin`` set) of a spawned model."""
@@ -74,30 +99,12 @@ class GazeboRosDepthCamera(GazeboRosCamera):
             self.publish_info(stamp_ns)
         stamp = to_time(stamp_ns)
         if self._depth_pub.get_num_connections() > 0:
-            encoding, step, pixels = depth_camera.depth_image(s, depth)
-            msg = ChunkedImage(
-                height=s.height,
-                width=s.width,
-                encoding=encoding,
-                is_bigendian=0,
-                step=step,
-                data=pixels,
-            )
+            msg = depth_image_message(s, depth)
             msg.header.stamp = stamp
             msg.header.frame_id = self.frame_id
             self._depth_pub.publish(msg)
         if self._points_pub.get_num_connections() > 0:
-            points, dense = self._cloud.build(depth, image)
-            cloud = ChunkedPointCloud2(
-                height=s.height,
-                width=s.width,
-                fields=self._fields,
-                is_bigendian=False,
-                point_step=depth_camera.POINT_STEP,
-                row_step=depth_camera.POINT_STEP * s.width,
-                data=points,
-                is_dense=dense,
-            )
+            cloud = point_cloud_message(s, self._fields, self._cloud, depth, image)
             cloud.header.stamp = stamp
             cloud.header.frame_id = self.frame_id
             self._points_pub.publish(cloud)
