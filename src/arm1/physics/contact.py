@@ -44,9 +44,6 @@ class ContactPair:
 
 class ContactSensor(SimSensor):
     kind = 'contact'
-    topic = ''  # where the ROS layer publishes it
-    frame_id = ''  # header.frame_id, before tf_prefix
-    namespace = ''  # the plugin's, where its tf_prefix parameter is read
 
     def __init__(
         self, model: str, name: str, robot: Robot, link: int, collision: str, update_rate: float

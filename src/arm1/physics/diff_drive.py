@@ -49,7 +49,6 @@ class DiffDrive(SimSensor):
     odometry_topic = ''
     odometry_frame = 'odom'
     robot_base_frame = 'base_footprint'
-    namespace = ''
     publish_tf = True  # <publishTf>: whether odometry is published at all
     publish_odom_tf = True
     publish_wheel_tf = False

@@ -28,9 +28,6 @@ class WrenchReading:
 
 class ForceTorque(SimSensor):
     kind = 'gazebo_ros_ft_sensor'
-    topic = ''  # where the ROS layer publishes it
-    frame_id = ''  # header.frame_id, before tf_prefix
-    namespace = ''  # the plugin's, where its tf_prefix parameter is read
 
     def __init__(
         self,

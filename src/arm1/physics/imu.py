@@ -85,8 +85,6 @@ class ImuSensor(SimSensor):
     """
 
     kind = 'imu'
-    topic = ''  # where the ROS layer publishes it
-    frame_id = ''  # header.frame_id, before tf_prefix
 
     def __init__(
         self,
@@ -179,8 +177,6 @@ class ImuModelPlugin(SimSensor):
     """gazebo_ros_imu (a model plugin): measured at ``updateRate`` (0: every step)."""
 
     kind = 'gazebo_ros_imu'
-    topic = ''  # where the ROS layer publishes it
-    frame_id = ''  # header.frame_id, before tf_prefix
     service = ''  # serviceName: an Empty service that does nothing, as upstream
 
     def __init__(

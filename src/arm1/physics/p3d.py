@@ -42,9 +42,6 @@ class P3dReading:
 
 class P3d(SimSensor):
     kind = 'gazebo_ros_p3d'
-    topic = ''  # where the ROS layer publishes it
-    frame_id = ''  # header.frame_id, before tf_prefix
-    namespace = ''  # the plugin's, where its tf_prefix parameter is read
     child_frame_id = ''  # bodyName
 
     def __init__(

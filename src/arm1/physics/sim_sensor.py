@@ -25,6 +25,11 @@ class SimSensor:
     """One sensor of a spawned model; subclasses implement ``measure``."""
 
     kind = 'sensor'  # the SDF sensor type or plugin it stands for, for messages
+    # Set by the ROS layer that publishes it: the topic, header.frame_id (before tf_prefix),
+    # and the plugin's namespace, where its tf_prefix parameter is read.
+    topic = ''
+    frame_id = ''
+    namespace = ''
 
     def __init__(self, model: str, name: str, update_rate: float) -> None:
         self.model, self.name = model, name
