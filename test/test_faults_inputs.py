@@ -48,7 +48,7 @@ from rostest_util import (  # noqa: E402
     wait_for_controllers,
 )
 
-from arm1.ros.node_handle import synchronous_publisher  # noqa: E402
+from arm1.ros.common.publishers import synchronous_publisher  # noqa: E402
 
 CM = '/arm1/controller_manager/'
 CTRL = '/arm1/%s_position_controller'

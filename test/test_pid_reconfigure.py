@@ -26,7 +26,7 @@ from rostest_util import Recorder, WorldTestCase, joint_recorder, positions, sim
 
 from arm1.control.hardware_interface import JointHandle, JointLimits  # noqa: E402
 from arm1.control.joint_position_controller import JointPositionController  # noqa: E402
-from arm1.ros.node_handle import RosNodeHandle  # noqa: E402
+from arm1.ros.control.node_handle import RosNodeHandle  # noqa: E402
 
 NS = '/arm1/joint1_position_controller'
 

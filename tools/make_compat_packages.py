@@ -79,17 +79,20 @@ PACKAGES = {
     'gazebo_ros': (
         'Stand-in for gazebo_ros: empty_world.launch, spawn_model and gzserver on '
         "arm1's pybullet world.",
-        {'spawn_model': 'arm1.ros.spawn_model', 'gzserver': 'arm1.ros.world_node'},
+        {'spawn_model': 'arm1.ros.tools.spawn_model', 'gzserver': 'arm1.ros.world.world_node'},
     ),
     'controller_manager': (
         "Stand-in for controller_manager's spawner and controller_manager tool, backed by "
         "arm1's controller managers.",
-        {'spawner': 'arm1.ros.spawner', 'controller_manager': 'arm1.ros.controller_manager_cli'},
+        {
+            'spawner': 'arm1.ros.tools.spawner',
+            'controller_manager': 'arm1.ros.tools.controller_manager_cli',
+        },
     ),
     'xacro': (
         'Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '
         'package path.',
-        {'xacro': 'arm1.ros.xacro_bridge'},
+        {'xacro': 'arm1.ros.tools.xacro_bridge'},
     ),
 }
 

@@ -687,7 +687,7 @@ def test_snapshot_png_of_a_frame():
 def test_camera_frame_id_as_gazebo_ros_camera_utils(
     monkeypatch, namespace, camera_name, params, frame, expected
 ):
-    from arm1.ros import camera_plugin, frames
+    from arm1.ros.plugins import camera_plugin, frames
 
     monkeypatch.setattr(frames.rospy, 'has_param', lambda key: key in params)
     monkeypatch.setattr(frames.rospy, 'get_param', lambda key: params[key])

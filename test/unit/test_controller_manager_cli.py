@@ -3,7 +3,7 @@
 
 from types import SimpleNamespace
 
-from arm1.ros.controller_manager_cli import Manager, run
+from arm1.ros.tools.controller_manager_cli import Manager, run
 
 
 def fake(ok=True):

@@ -292,8 +292,8 @@ def test_the_chunked_point_cloud_serializes_as_sensor_msgs_does(monkeypatch):
 
     from sensor_msgs.msg import PointCloud2
 
-    from arm1.ros import camera_plugin
-    from arm1.ros.depth_camera_plugin import ChunkedPointCloud2, point_fields
+    from arm1.ros.plugins import camera_plugin
+    from arm1.ros.plugins.depth_camera_plugin import ChunkedPointCloud2, point_fields
 
     monkeypatch.setattr(camera_plugin, 'CHUNK', 40)  # several slices of a 6-point cloud
     s = sensor_3x2()

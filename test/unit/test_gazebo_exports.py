@@ -6,7 +6,7 @@ import os
 import rospkg
 
 from arm1.description.resource_paths import gazebo_paths
-from arm1.ros.packages import gazebo_exports
+from arm1.ros.common.packages import gazebo_exports
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="2">

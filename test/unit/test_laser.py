@@ -299,7 +299,7 @@ def test_vertical_layers_are_concatenated_with_a_warning(sim, caplog):
 
 
 def test_laser_scan_message_as_upstream_fills_it(sim):
-    from arm1.ros.laser_plugin import laser_message
+    from arm1.ros.plugins.laser_plugin import laser_message
 
     laser = laser_of(sim, mast_urdf(ray_block(rmax=1.5)))
     reading = laser.reading(np.array([1.0, 1.5, 0.1, 0.7, 2.0]))
@@ -328,7 +328,7 @@ def test_laser_scan_message_as_upstream_fills_it(sim):
     ],
 )
 def test_frame_id_is_tf_resolved_as_upstream(monkeypatch, namespace, param, frame, expected):
-    from arm1.ros import frames
+    from arm1.ros.plugins import frames
 
     params = dict([param]) if param else {}
     monkeypatch.setattr(frames.rospy, 'has_param', lambda key: key in params)

@@ -5,7 +5,7 @@ import pytest
 from conftest import box_link, control_plugin, transmission
 
 from arm1.description.sdf_world import WorldConfig
-from arm1.ros.spawn_model import parse_args
+from arm1.ros.tools.spawn_model import parse_args
 from arm1.sim.simulation import Simulation
 
 JOINT = """

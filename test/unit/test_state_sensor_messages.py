@@ -5,7 +5,7 @@ from arm1.physics.contact import ContactPair
 from arm1.physics.force_torque import WrenchReading
 from arm1.physics.imu import ImuReading
 from arm1.physics.p3d import P3dReading
-from arm1.ros.state_sensor_plugins import (
+from arm1.ros.plugins.state_sensor_plugins import (
     contacts_message,
     imu_message,
     odometry_message,

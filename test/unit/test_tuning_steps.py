@@ -155,7 +155,7 @@ def test_metrics_from_a_rosbag_match_the_simulated_step(rig, tmp_path):
     from sensor_msgs.msg import JointState
     from std_msgs.msg import Float64
 
-    from arm1.ros.bag import read_run
+    from arm1.ros.tools.bag import read_run
     from arm1.tuning.recorded import recorded_steps
 
     run = rig.run('joint4', SHORT)

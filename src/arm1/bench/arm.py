@@ -17,7 +17,7 @@ STEP = 0.001  # s, the world file's max_step_size
 
 def arm1_urdf(namespace: str = '/arm1') -> str:
     """arm1's URDF (xacro expanded) with its control plugin in ``namespace``."""
-    from ..ros.xacro_bridge import expand
+    from ..ros.tools.xacro_bridge import expand
 
     xml = expand(XACRO)
     return xml.replace(

@@ -15,7 +15,7 @@ def bare(seconds: float) -> Dict[str, float]:
     import pybullet as p
 
     from ..description.urdf_model import resolve_mesh_uris
-    from ..ros.packages import find_package
+    from ..ros.common.packages import find_package
 
     xml = resolve_mesh_uris(arm1_urdf(), find_package)
     with tempfile.NamedTemporaryFile('w', suffix='.urdf', delete=False) as f:

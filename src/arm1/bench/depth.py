@@ -48,7 +48,11 @@ def sensor(width: int = 640, height: int = 480) -> CameraSensor:
 
 def depth_frame(count: int = 60) -> Dict[str, Any]:
     """Median milliseconds over ``count`` frames of each part, and their sum."""
-    from ..ros.depth_camera_plugin import depth_image_message, point_cloud_message, point_fields
+    from ..ros.plugins.depth_camera_plugin import (
+        depth_image_message,
+        point_cloud_message,
+        point_fields,
+    )
 
     s = sensor()
     backend = renderers.open_backend()

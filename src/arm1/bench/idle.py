@@ -14,7 +14,7 @@ def idle_world(seconds: float) -> Dict[str, float]:
     what each wake-up costs in CPU is measured apart, with plain 0.9 ms sleeps."""
     import rospy
 
-    from ..ros.world_node import parse_args, start_world
+    from ..ros.world.world_node import parse_args, start_world
 
     n = 2000
     c0 = time.process_time()

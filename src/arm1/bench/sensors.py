@@ -67,7 +67,7 @@ WALLS = [
 
 def laser_scan(count: int = 200, rays: int = 720) -> Dict[str, Any]:
     """Median milliseconds over ``count`` scans of each part, and their sum."""
-    from ..ros.laser_plugin import laser_message
+    from ..ros.plugins.laser_plugin import laser_message
 
     sim = Simulation(WorldConfig())
     try:

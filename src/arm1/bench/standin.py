@@ -12,7 +12,7 @@ from ..control.switching import SwitchRequest
 from .arm import CONTROLLERS, NAMES, TRAJECTORY_CONTROLLERS, TRAJECTORY_NAMES, WORLD, arm1_urdf
 
 if TYPE_CHECKING:
-    from ..ros.world_node import WorldNode
+    from ..ros.world.world_node import WorldNode
     from ..sim.pacer import Pacer
 
 
@@ -29,7 +29,7 @@ def start_standin(
     import rosparam
     import rospy
 
-    from ..ros.world_node import parse_args, start_world
+    from ..ros.world.world_node import parse_args, start_world
 
     argv = [WORLD] + (['--lockstep'] if lockstep else [])
     if real_time_update_rate is not None:

@@ -12,7 +12,7 @@ from .report import HEADER, recorded_rows
 
 def run_bag(args: argparse.Namespace, setup: Setup, out: IO[str]) -> int:
     """Print every step found in ``args.bag`` with its metrics and verdict."""
-    from ..ros.bag import read_run
+    from ..ros.tools.bag import read_run
 
     rig = setup.rig()  # for the namespace, the controllers and the joint limits
     try:

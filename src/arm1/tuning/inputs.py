@@ -9,8 +9,8 @@ from typing import Any, Dict, List, Optional
 
 import yaml
 
-from ..ros import xacro_bridge
-from ..ros.packages import find_package
+from ..ros.common.packages import find_package
+from ..ros.tools import xacro_bridge
 from .metrics import Criteria
 from .steps import ARM1_POSES, ARM1_START, Protocol, StepRig
 

@@ -2,7 +2,7 @@
 
 Input is plain series (ROS-free): command samples ``(t, value)`` of a position
 controller and position samples ``(t, position)`` of its joint, e.g. from a rosbag
-of ``<ns>/joint_states`` and ``<ns>/<controller>/command`` (arm1.ros.bag reads one).
+of ``<ns>/joint_states`` and ``<ns>/<controller>/command`` (arm1.ros.tools.bag reads one).
 A step is a command change of at least ``min_step`` rad that is then held for at
 least ``min_hold`` s; each is measured up to the next command change (or the end
 of the recording) exactly like a simulated step (metrics.step_metrics), with the

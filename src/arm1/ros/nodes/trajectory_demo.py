@@ -16,7 +16,7 @@ from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from ..control.joint_trajectory_controller import ERROR_CODE_NAMES
+from ...control.joint_trajectory_controller import ERROR_CODE_NAMES
 
 JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
 # (seconds from start, positions): out to one side, to the other, back up.

@@ -9,7 +9,7 @@ from gazebo_msgs.srv import SetModelConfiguration, SpawnModel
 from geometry_msgs.msg import Pose
 from std_srvs.srv import Empty
 
-from ..description.pose_math import quat_from_rpy
+from ...description.pose_math import quat_from_rpy
 
 
 def parse_args(argv):

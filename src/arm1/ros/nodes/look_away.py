@@ -13,8 +13,8 @@ from sensor_msgs.msg import Image, JointState
 
 from arm1.srv import GoToPosition
 
-from ..goal.image import is_uniform
-from ..goal.look_away import LookAwayPolicy
+from ...goal.image import is_uniform
+from ...goal.look_away import LookAwayPolicy
 
 # Camera along the arm, pitched 0.2 rad down: the horizon in the upper third.
 DEFAULT_POSE = [0.0, 0.6, -0.4, -0.4]

@@ -17,11 +17,11 @@ from typing import Any, Callable, Deque, Tuple
 import rospy
 from sensor_msgs.msg import CameraInfo, Image
 
-from ..description.camera_sensor import CameraSensor
-from ..physics.camera_geometry import intrinsics
-from ..physics.sensor_manager import Camera, Pixels
+from ...description.camera_sensor import CameraSensor
+from ...physics.camera_geometry import intrinsics
+from ...physics.sensor_manager import Camera, Pixels
+from ..common.stamps import to_time
 from .frames import tf_prefix, tf_resolve
-from .node_handle import to_time
 
 MAX_PENDING_IMAGES = 2  # frames waiting for the publishing thread; older ones are dropped
 CHUNK = 1 << 20  # bytes of pixels serialized at a time

@@ -14,21 +14,21 @@ import rospy
 from gazebo_msgs.srv import DeleteModel, SetModelConfiguration, SpawnModel
 from std_srvs.srv import Empty
 
-from ..description.names import shown
-from ..description.resource_paths import ResourcePaths, gazebo_paths
-from ..description.sdf_model import (
+from ...description.names import shown
+from ...description.resource_paths import ResourcePaths, gazebo_paths
+from ...description.sdf_model import (
     ModelSpawn,
     SdfModelError,
     model_dir_finder,
     sdf_spawn,
 )
-from ..sim.model_state import WORLD_NAMES, State, compose, frame_state
-from ..sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
-from .camera_plugin import GazeboRosCamera
-from .controller_manager_services import ControllerManagerServices
-from .depth_camera_plugin import GazeboRosDepthCamera
-from .packages import find_package, gazebo_exports
-from .sensor_plugins import attach_sensor_plugins
+from ...sim.model_state import WORLD_NAMES, State, compose, frame_state
+from ...sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
+from ..common.packages import find_package, gazebo_exports
+from ..control.controller_manager_services import ControllerManagerServices
+from ..plugins.camera_plugin import GazeboRosCamera
+from ..plugins.depth_camera_plugin import GazeboRosDepthCamera
+from ..plugins.sensor_plugins import attach_sensor_plugins
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import rospy
 
-from ..sim.pacer import Pacer
-from ..sim.simulation import Simulation
-from .node_handle import RosNodeHandle
+from ...sim.pacer import Pacer
+from ...sim.simulation import Simulation
+from ..control.node_handle import RosNodeHandle
 from .sim_clock import SimClock
 from .sim_thread import SimThreadCalls
 

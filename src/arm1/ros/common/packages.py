@@ -8,8 +8,8 @@ from typing import List, Optional
 
 import rospkg
 
-from ..description.resource_paths import PackageExports
-from ..paths import repo_root
+from ...description.resource_paths import PackageExports
+from ...paths import repo_root
 
 
 @functools.lru_cache(maxsize=1)

@@ -22,8 +22,8 @@ from std_msgs.msg import Float64
 
 from arm1.srv import GoToPosition, GoToPositionResponse
 
-from ..description.urdf_model import UrdfError
-from ..goal.arm_mover import clamp_request, describe, joint_limits, off_target
+from ...description.urdf_model import UrdfError
+from ...goal.arm_mover import clamp_request, describe, joint_limits, off_target
 
 JOINTS = ('joint1', 'joint2', 'joint3', 'joint4')  # the fields of GoToPosition
 

@@ -17,9 +17,9 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
 from tf2_msgs.msg import TFMessage
 
-from ..description.gazebo_plugins import topic
-from ..physics.diff_drive import DiffDrive, DiffDriveReading
-from .node_handle import to_time
+from ...description.gazebo_plugins import topic
+from ...physics.diff_drive import DiffDrive, DiffDriveReading
+from ..common.stamps import to_time
 from .state_sensor_plugins import odometry_pose_twist, resolve_frame
 
 # upstream's fixed odometry pose covariance (x, y well known; z, roll, pitch unknown)

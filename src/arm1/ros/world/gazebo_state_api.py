@@ -34,9 +34,9 @@ from gazebo_msgs.srv import (
 )
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 
-from ..sim import model_state as ms
-from ..sim.model_state import State, StateError
-from ..sim.simulation import Simulation
+from ...sim import model_state as ms
+from ...sim.model_state import State, StateError
+from ...sim.simulation import Simulation
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop
 

@@ -13,16 +13,16 @@ from typing import List, Optional, Sequence, Tuple
 
 import rospy
 
-from ..description.limits import LimitError, Limits
-from ..description.resource_paths import ResourceNotFound, gazebo_paths
-from ..description.sdf_world import SdfError, WorldConfig, read_world
-from ..sim.pacer import Pacer, wall_period
-from ..sim.simulation import Model, Simulation, SpawnError
+from ...description.limits import LimitError, Limits
+from ...description.resource_paths import ResourceNotFound, gazebo_paths
+from ...description.sdf_world import SdfError, WorldConfig, read_world
+from ...sim.pacer import Pacer, wall_period
+from ...sim.simulation import Model, Simulation, SpawnError
+from ..common.logs import route_core_logs
+from ..common.packages import gazebo_exports
 from .gazebo_ros_api import GazeboRosApi
 from .gazebo_state_api import GazeboStateApi
 from .master_watch import MasterWatch
-from .node_handle import route_core_logs
-from .packages import gazebo_exports
 from .sim_clock import SimClock
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop

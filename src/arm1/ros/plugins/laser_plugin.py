@@ -12,16 +12,14 @@ topic has a subscriber; an empty ``<topicName>`` advertises nothing.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Optional
+from typing import Any, Optional
 
 from sensor_msgs.msg import LaserScan
 
-from ..physics.laser import Laser, LaserReading
+from ...physics.laser import Laser, LaserReading
+from ..common.stamps import to_time
 from .frames import tf_prefix, tf_resolve
-from .node_handle import to_time
-
-if TYPE_CHECKING:
-    from .sensor_plugins import SensorPublisher
+from .sensor_publisher import SensorPublisher
 
 
 def laser_message(stamp_ns: int, frame_id: str, laser: Laser, r: LaserReading) -> LaserScan:
@@ -51,9 +49,6 @@ class LaserPublisher:
         )
         self.publisher: Optional[SensorPublisher] = None
         if laser.topic:
-            # ros.sensor_plugins imports this module to fill its table: imported when used
-            from .sensor_plugins import SensorPublisher
-
             frame = self.frame_id
             self.publisher = SensorPublisher(
                 laser,

@@ -16,8 +16,9 @@ from typing import Any
 import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 
-from ..physics import depth_camera
-from ..physics.sensor_manager import Camera, Pixels
+from ...physics import depth_camera
+from ...physics.sensor_manager import Camera, Pixels
+from ..common.stamps import to_time
 from .camera_plugin import (
     ChunkedImage,
     GazeboRosCamera,
@@ -25,7 +26,6 @@ from .camera_plugin import (
     camera_info,
     serialize_chunked,
 )
-from .node_handle import to_time
 
 
 class ChunkedPointCloud2(PointCloud2):

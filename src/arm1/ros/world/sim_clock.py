@@ -9,8 +9,9 @@ import rospy.impl.simtime
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 
-from ..sim.pacer import RealTimeFactorMeter
-from .node_handle import synchronous_publisher, to_time
+from ...sim.pacer import RealTimeFactorMeter
+from ..common.publishers import synchronous_publisher
+from ..common.stamps import to_time
 
 MIN_CLOCK_WALL_PERIOD = 0.001  # s: the most /clock messages a wall second gets is 1000
 

@@ -12,7 +12,7 @@ from controller_manager_msgs.srv import (
     UnloadController,
 )
 
-from ..control.controller_manager import BASE_CLASS, ControllerManager, ControllerManagerError
+from ...control.controller_manager import BASE_CLASS, ControllerManager, ControllerManagerError
 from .node_handle import RosNodeHandle
 
 

@@ -9,7 +9,7 @@ Frame ids: p3d, bumper and ft_sensor pass theirs through tf::resolve with the
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, List, Protocol, Sequence
+from typing import Any, List, Protocol, Sequence
 
 import rospy
 from gazebo_msgs.msg import ContactsState, ContactState
@@ -18,23 +18,14 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty, EmptyResponse
 
-from ..description.gazebo_plugins import topic
-from ..physics.contact import ContactPair, ContactSensor
-from ..physics.force_torque import ForceTorque, WrenchReading
-from ..physics.imu import ImuModelPlugin, ImuReading, ImuSensor
-from ..physics.p3d import P3d, P3dReading
+from ...description.gazebo_plugins import topic
+from ...physics.contact import ContactPair, ContactSensor
+from ...physics.force_torque import ForceTorque, WrenchReading
+from ...physics.imu import ImuModelPlugin, ImuReading, ImuSensor
+from ...physics.p3d import P3d, P3dReading
+from ..common.stamps import to_time
 from .frames import tf_resolve
-from .node_handle import to_time
-
-if TYPE_CHECKING:
-    from .sensor_plugins import SensorPublisher
-
-
-def _publisher(*args: Any) -> SensorPublisher:
-    # ros.sensor_plugins imports this module to fill its table: imported when first used
-    from .sensor_plugins import SensorPublisher
-
-    return SensorPublisher(*args)
+from .sensor_publisher import SensorPublisher
 
 
 def resolve_frame(name: str, namespace: str = '') -> str:
@@ -154,7 +145,7 @@ def wrench_message(stamp_ns: int, frame_id: str, r: WrenchReading) -> WrenchStam
 
 def imu_sensor_publisher(sensor: ImuSensor) -> SensorPublisher:
     frame = sensor.frame_id
-    return _publisher(sensor, sensor.topic, Imu, lambda t, r: imu_message(t, frame, r))
+    return SensorPublisher(sensor, sensor.topic, Imu, lambda t, r: imu_message(t, frame, r))
 
 
 class ImuPluginPublisher:
@@ -162,7 +153,7 @@ class ImuPluginPublisher:
 
     def __init__(self, sensor: ImuModelPlugin) -> None:
         frame = sensor.frame_id
-        self.publisher = _publisher(
+        self.publisher = SensorPublisher(
             sensor, sensor.topic, Imu, lambda t, r: imu_message(t, frame, r)
         )
         self.service = rospy.Service(sensor.service, Empty, lambda req: EmptyResponse())
@@ -190,18 +181,20 @@ def imu_plugin_publisher(sensor: ImuModelPlugin) -> Any:
 
 def p3d_publisher(sensor: P3d) -> SensorPublisher:
     frame, child = resolve_frame(sensor.frame_id, sensor.namespace), sensor.child_frame_id
-    return _publisher(
+    return SensorPublisher(
         sensor, sensor.topic, Odometry, lambda t, r: odometry_message(t, frame, child, r)
     )
 
 
 def bumper_publisher(sensor: ContactSensor) -> SensorPublisher:
     frame = resolve_frame(sensor.frame_id, sensor.namespace)
-    return _publisher(
+    return SensorPublisher(
         sensor, sensor.topic, ContactsState, lambda t, r: contacts_message(t, frame, r)
     )
 
 
 def ft_publisher(sensor: ForceTorque) -> SensorPublisher:
     frame = resolve_frame(sensor.frame_id, sensor.namespace)
-    return _publisher(sensor, sensor.topic, WrenchStamped, lambda t, r: wrench_message(t, frame, r))
+    return SensorPublisher(
+        sensor, sensor.topic, WrenchStamped, lambda t, r: wrench_message(t, frame, r)
+    )

@@ -10,7 +10,7 @@ When rospkg does not know the package, ``arm1`` itself still resolves to this so
 
 import sys
 
-from . import packages
+from ..common import packages
 
 
 def find_package(pkg: str) -> str:

@@ -9,7 +9,7 @@ import sys
 import rospy
 from sensor_msgs.msg import Image
 
-from ..goal.image import PNG_TYPES, png
+from ...goal.image import PNG_TYPES, png
 
 
 def main(argv=None):

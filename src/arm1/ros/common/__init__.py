@@ -1,0 +1,3 @@
+"""rospy helpers every room uses: sim-time stamps, synchronous publishers, log routing, package
+lookup.
+"""

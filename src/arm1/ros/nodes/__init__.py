@@ -1,0 +1,1 @@
+"""The seed's nodes: arm_mover, look_away and the trajectory demo."""
