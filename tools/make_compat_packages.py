@@ -102,6 +102,9 @@ MSG_PACKAGES = {
     'gazebo_msgs': ('2.9.2', ['std_msgs', 'geometry_msgs', 'trajectory_msgs']),
     'control_msgs': ('1.5.2', ['std_msgs', 'geometry_msgs', 'trajectory_msgs', 'actionlib_msgs']),
     'controller_manager_msgs': ('0.20.0', ['std_msgs']),
+    # franka_ros's (noetic-devel) messages, for franka_gazebo's FrankaHWSim stand-in
+    'franka_msgs': ('0.10.1', ['std_msgs', 'actionlib_msgs']),
+    'franka_gripper': ('0.10.1', ['actionlib_msgs']),
 }
 DEFINITIONS = os.path.join(ARM1, 'tools', 'compat_msgs')
 KINDS = (('msg', 'add_message_files'), ('srv', 'add_service_files'), ('action', 'add_action_files'))
