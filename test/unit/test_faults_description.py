@@ -4,7 +4,7 @@
 import pytest
 from urdf_snippets import joint, link, sdf_tower
 
-from arm1.description.sdf_model import sdf_spawn
+from arm1.description.sdf_to_urdf import sdf_spawn
 from arm1.description.sdf_world import WorldConfig
 from arm1.description.urdf_model import UrdfError, parse_urdf
 from arm1.sim.simulation import Simulation, SpawnError

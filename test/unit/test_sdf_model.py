@@ -1,4 +1,5 @@
-"""description/sdf_model.py: an SDF <model> as a link tree and as URDF the spawn path loads."""
+"""description/sdf_model.py (reading) and sdf_to_urdf.py (writing): an SDF <model> as a link tree
+and as URDF the spawn path loads."""
 
 import math
 import xml.etree.ElementTree as ET
@@ -6,6 +7,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from arm1.description.limits import Limits
+from arm1.description.pose_math import quat_from_rpy, rpy_from_quat
 from arm1.description.sdf_model import (
     IDENTITY,
     SdfModelError,
@@ -15,11 +17,8 @@ from arm1.description.sdf_model import (
     model_dir_finder,
     parse_model,
     parse_sdf_text,
-    quat_from_rpy,
-    rpy_from_quat,
-    sdf_spawn,
-    to_urdf,
 )
+from arm1.description.sdf_to_urdf import sdf_spawn, to_urdf
 from arm1.description.sdf_world import parse_world
 from arm1.description.urdf_model import parse_urdf
 

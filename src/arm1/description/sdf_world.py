@@ -15,7 +15,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Optional
 
-from . import safe_xml, sdf_model
+from . import safe_xml, sdf_model, sdf_to_urdf
 from .limits import LimitError, Limits
 from .resource_paths import ResourceNotFound
 
@@ -53,7 +53,7 @@ class WorldConfig:
     real_time_update_rate: float = 1000.0
     gravity: tuple = (0.0, 0.0, -9.8)
     models: list = field(default_factory=list)
-    spawns: list = field(default_factory=list)  # sdf_model.ModelSpawn, spawned at start
+    spawns: list = field(default_factory=list)  # sdf_to_urdf.ModelSpawn, spawned at start
     skipped: list = field(default_factory=list)  # (name, why) of what could not be built
     limits: Limits = field(default_factory=Limits)  # what spawned content may cost
     lockstep: bool = False  # gzserver --lockstep: physics waits for every sensor frame
@@ -137,7 +137,7 @@ def _model(
         return
     try:
         parsed = sdf_model.parse_model(model, config.limits, base_dir, _model_dirs(find_model))
-        spawn = sdf_model.model_spawn(parsed)
+        spawn = sdf_to_urdf.model_spawn(parsed)
     except sdf_model.SdfModelError as exc:
         config.skipped.append((name, str(exc)))
         return

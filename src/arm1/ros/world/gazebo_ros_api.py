@@ -16,12 +16,8 @@ from std_srvs.srv import Empty
 
 from ...description.names import shown
 from ...description.resource_paths import ResourcePaths, gazebo_paths
-from ...description.sdf_model import (
-    ModelSpawn,
-    SdfModelError,
-    model_dir_finder,
-    sdf_spawn,
-)
+from ...description.sdf_model import SdfModelError, model_dir_finder
+from ...description.sdf_to_urdf import ModelSpawn, sdf_spawn
 from ...sim.model_state import WORLD_NAMES, State, compose, frame_state
 from ...sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
 from ..common.packages import find_package, gazebo_exports
