@@ -258,7 +258,7 @@ def _closing_on_a_box(cls, interface, pid_gains=None):
             'joint': 'left_finger_joint',
             'gains': {'left_finger_joint': {'p': 200.0, 'd': 5.0}},
             'stall_timeout': 0.5,
-            'stall_velocity_threshold': 0.02,  # contact jitter: see the README
+            'stall_velocity_threshold': 0.02,  # contact jitter: see docs/controllers.md
         }
         ros = FakeRos({'gripper_bot': {'g': params}})
         c = cls()

@@ -3,7 +3,7 @@ per step and held over it (DefaultRobotHWSim's POSITION_PID; the derivative is t
 finite difference). Such a loop on inertia I at step h is stable only while
 4 - 2 d h / I - p h^2 / I > 0; past that it chatters at the step rate, bounded by the effort
 limit. The stand-in must land on the same side of that line as Gazebo would (TurtleBot3's
-OpenMANIPULATOR sits on it: README compatibility table)."""
+OpenMANIPULATOR sits on it: docs/compatibility.md)."""
 
 import pytest
 from conftest import FakeRos, control_plugin, transmission

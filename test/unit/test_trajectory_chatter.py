@@ -2,7 +2,7 @@
 may start it): with the URDF's 0.5 rad/s, the effort saturation's velocity cut holds joints
 2-4 in a step-rate chatter after a goal, as Gazebo's EffortJointSaturationHandle would;
 config/controllers_trajectory.yaml lifts the cut with joint_limits parameters and the arm
-comes to rest (README, "Trajectories")."""
+comes to rest (docs/controllers.md, "Trajectories")."""
 
 import os
 

@@ -198,7 +198,7 @@ def test_tune_command_prints_metrics_snippet_and_plots(tmp_path):
 
 
 def test_shipped_tuned_gains_do_not_shake_where_the_seeds_do(arm1_urdf, controllers_params):
-    """config/controllers_tuned.yaml keeps the promise its header and the README make."""
+    """config/controllers_tuned.yaml keeps the promise its header and docs/tuning.md make."""
     with open(os.path.join(REPO_ROOT, 'config', 'controllers_tuned.yaml')) as f:
         tuned = yaml.safe_load(f)
     setup = Setup(cli.parse_args([]))

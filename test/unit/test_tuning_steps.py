@@ -130,7 +130,7 @@ def test_runs_are_repeatable_and_gains_restore(rig):
 
 
 def test_seed_gains_overshoot(rig):
-    """The seed's gains overshoot on every joint (the README's table)."""
+    """The seed's gains overshoot on every joint (docs/tuning.md's table)."""
     for joint in rig.joints:
         w = worst(rig.run(joint, SHORT).metrics)
         assert w.overshoot > 5.0

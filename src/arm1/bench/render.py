@@ -112,7 +112,7 @@ def render_section(results: Dict[str, Any]) -> str:
     lines = [
         '\n## Camera frames per renderer\n',
         'Wall ms per frame (CPU ms, all threads), medians over the runs; `ARM1_RENDERER` '
-        'chooses (README, "Renderers").\n',
+        'chooses ([docs/sensors.md](docs/sensors.md#renderers)).\n',
         '| renderer | %s |' % ' | '.join('%d × %d' % s for s in SIZES),
         '|---|%s' % ('---|' * len(SIZES)),
     ]
