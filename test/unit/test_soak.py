@@ -3,7 +3,7 @@ section."""
 
 import pytest
 
-from arm1.bench import soak
+from arm1.bench.soak import judge, report
 
 
 def samples(minutes=5.0, rtf=1.0, rss0=100.0, rss_growth=0.0, stall=None, step=2.0):
@@ -35,7 +35,7 @@ def samples(minutes=5.0, rtf=1.0, rss0=100.0, rss_growth=0.0, stall=None, step=2
 
 
 def test_real_time_and_flat_memory_meet_both_goals():
-    fig = soak.judge(samples(), 60)
+    fig = judge.judge(samples(), 60)
     assert fig['rtf'] == pytest.approx(1.0) and fig['rtf_ok'] and fig['rss_ok']
     assert fig['joint_states_hz'] == pytest.approx(50, rel=0.01)
     assert fig['images_hz'] == pytest.approx(30, rel=0.01)
@@ -43,21 +43,21 @@ def test_real_time_and_flat_memory_meet_both_goals():
 
 
 def test_sim_time_two_tenths_of_a_percent_slow_misses_the_rtf_goal():
-    fig = soak.judge(samples(rtf=0.998), 60)
+    fig = judge.judge(samples(rtf=0.998), 60)
     assert not fig['rtf_ok']
     assert fig['drift_pct'] == pytest.approx(-0.2, abs=0.01)
 
 
 def test_one_stall_is_found_and_counted_in_the_drift():
-    fig = soak.judge(samples(stall=(150.0, 0.4)), 60)
+    fig = judge.judge(samples(stall=(150.0, 0.4)), 60)
     assert fig['worst_loss_s'] == pytest.approx(0.4) and fig['worst_loss_at_s'] == 150.0
     assert fig['losses_over_50ms'] == 1
     assert fig['drift_s'] == pytest.approx(-0.4)
 
 
 def test_memory_growing_past_five_percent_misses_the_rss_goal_and_below_meets_it():
-    assert not soak.judge(samples(minutes=10, rss_growth=0.08), 60)['rss_ok']
-    assert soak.judge(samples(minutes=10, rss_growth=0.04), 60)['rss_ok']
+    assert not judge.judge(samples(minutes=10, rss_growth=0.08), 60)['rss_ok']
+    assert judge.judge(samples(minutes=10, rss_growth=0.04), 60)['rss_ok']
 
 
 def test_warm_up_growth_is_left_out():
@@ -65,47 +65,47 @@ def test_warm_up_growth_is_left_out():
     for s in data:
         if s['t'] < 60:
             s['world_rss_mb'] = 50.0  # memory still filling during the warm-up
-    assert soak.judge(data, 60)['rss_ok']
+    assert judge.judge(data, 60)['rss_ok']
 
 
 def test_one_row_per_whole_minute():
-    rows = soak.minute_rows(samples(minutes=5))
+    rows = judge.minute_rows(samples(minutes=5))
     assert [r['minute'] for r in rows] == [1, 2, 3, 4, 5]
     assert all(r['rtf'] == pytest.approx(1.0) for r in rows)
-    assert soak.format_row(rows[0]).split()[0] == '1'
+    assert report.format_row(rows[0]).split()[0] == '1'
 
 
 def test_section_replaces_the_previous_one_and_keeps_the_rest(tmp_path):
     path = tmp_path / 'BENCHMARKS.md'
     path.write_text('# Benchmarks\n\ntable\n')
-    first = soak.SECTION_BEGIN + '\n## Soak\nrun 1\n' + soak.SECTION_END + '\n'
-    soak.replace_section(str(path), first)
-    soak.replace_section(str(path), first.replace('run 1', 'run 2'))
+    first = report.SECTION_BEGIN + '\n## Soak\nrun 1\n' + report.SECTION_END + '\n'
+    report.replace_section(str(path), first)
+    report.replace_section(str(path), first.replace('run 1', 'run 2'))
     text = path.read_text()
     assert text.startswith('# Benchmarks\n\ntable\n')
     assert 'run 2' in text and 'run 1' not in text and text.count('## Soak') == 1
-    assert soak.existing_section(str(path)) == first.replace('run 1', 'run 2')
+    assert report.existing_section(str(path)) == first.replace('run 1', 'run 2')
 
 
 def test_markdown_names_goals_and_other_load():
     data = samples(minutes=3)
     result = {
-        'figures': soak.judge(data, 60),
-        'minutes': soak.minute_rows(data),
+        'figures': judge.judge(data, 60),
+        'minutes': judge.minute_rows(data),
         'minutes_asked': 3,
         'machine': {'date': 'today', 'cpu': 'cpu', 'cores': 2},
     }
-    text = soak.markdown(result)
+    text = report.markdown(result)
     assert '| real-time factor after the warm-up | 1.00000 | 1 ± 0.001 | met |' in text
     assert 'Other work ran on the machine' in text
 
 
 def test_markdown_explains_stalls_and_skipped_frames_only_when_there_are_some():
     def text(data):
-        return soak.markdown(
+        return report.markdown(
             {
-                'figures': soak.judge(data, 60),
-                'minutes': soak.minute_rows(data),
+                'figures': judge.judge(data, 60),
+                'minutes': judge.minute_rows(data),
                 'minutes_asked': 3,
                 'machine': {'date': 'd', 'cpu': 'c', 'cores': 2},
             }

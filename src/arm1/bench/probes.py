@@ -1,4 +1,4 @@
-"""What a process or a call costs, and what machine the benchmark ran on."""
+"""What a process or a call costs, and what machine and code the benchmark ran on."""
 
 from __future__ import annotations
 
@@ -9,6 +9,8 @@ import time
 from typing import Callable, Dict, Iterable, List
 
 import psutil
+
+from ..paths import repo_root
 
 
 def median_ms(fn: Callable[[], object], count: int) -> float:
@@ -69,3 +71,37 @@ def machine() -> Dict[str, object]:
         # averages as the run ends (the 15 min one spans most of it).
         'load_average': list(os.getloadavg()),
     }
+
+
+def source_state() -> str:
+    """The commit the run used, and whether src/ differed from it (others may be mid-change)."""
+    import subprocess
+
+    try:
+        head = subprocess.run(
+            ['git', '-C', repo_root(), 'rev-parse', '--short', 'HEAD'],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+        dirty = subprocess.run(
+            [
+                'git',
+                '-C',
+                repo_root(),
+                'status',
+                '--porcelain',
+                'src',
+                'scripts',
+                'launch',
+                'urdf',
+                'worlds',
+                'config',
+            ],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return 'unknown'
+    return head + (' with uncommitted changes under src/ etc.' if dirty else '')

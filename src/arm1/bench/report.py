@@ -215,7 +215,7 @@ def write_markdown(results: Results, path: str) -> str:
     m = results['machine']
     text = table(results)
     from .render import render_section
-    from .soak import existing_section
+    from .soak.report import existing_section
 
     soak = existing_section(path)  # make soak's section outlives a new make bench
     with open(path, 'w') as f:
