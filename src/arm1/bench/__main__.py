@@ -18,8 +18,9 @@ from tqdm import tqdm
 
 from ..paths import repo_root
 from ..session.launcher import RosSession
+from .plot import write_plot
 from .probes import machine
-from .report import write_markdown, write_plot
+from .report import write_markdown
 
 # (key, worker kind, worker args, runs, quick args, quick runs)
 PLAN = [
