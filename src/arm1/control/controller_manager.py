@@ -17,8 +17,8 @@ import threading
 from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
 
 from .controller import Controller, ControllerError, State
-from .interfaces import NodeFactory, NodeHandle, RobotHW
-from .registry import CONTROLLER_TYPES
+from .interfaces import NodeFactory, NodeHandle, RobotHW, SwitchingRobotHW
+from .registry import CONTROLLER_TYPES, cpp_only
 
 log = logging.getLogger('arm1.control')
 
@@ -63,10 +63,12 @@ class _Loaded:
 class _Switch:
     """A switch request waiting for the next update."""
 
-    __slots__ = ('start', 'stop', 'done', 'result')
+    __slots__ = ('start', 'stop', 'restart', 'done', 'result')
 
-    def __init__(self, start: List[_Loaded], stop: List[_Loaded]) -> None:
-        self.start, self.stop = start, stop
+    def __init__(
+        self, start: List[_Loaded], stop: List[_Loaded], restart: Sequence[_Loaded] = ()
+    ) -> None:
+        self.start, self.stop, self.restart = start, stop, list(restart)
         self.done = threading.Event()
         self.result: List[bool] = []  # filled once, by the update thread or by shutdown
 
@@ -154,6 +156,14 @@ class ControllerManager:
                 % (name, ns)
             )
         cls = CONTROLLER_TYPES.get(type_name)
+        if cls is None and cpp_only(str(type_name)):
+            controller_nh.shutdown()
+            raise ControllerManagerError(
+                "Could not load controller '%s': type '%s' is a C++ controller plugin of %s, "
+                "which cannot load into arm1's Python controller manager (its controller "
+                'types: %s)'
+                % (name, type_name, cpp_only(str(type_name)), ', '.join(self.controller_types()))
+            )
         if cls is None:
             controller_nh.shutdown()
             raise ControllerManagerError(
@@ -210,17 +220,17 @@ class ControllerManager:
         if timeout is None or not (math.isfinite(timeout) and 0 < timeout < threading.TIMEOUT_MAX):
             timeout = None
         with self._lock:
-            to_start = self._checked(start, 'start', lambda c: not c.running, strictness)
-            to_stop = self._checked(stop, 'stop', lambda c: c.running, strictness)
-            if to_start is None or to_stop is None:
+            checked = self._checked(start, stop, strictness)
+            if checked is None:
                 return False
-            conflict = self._resource_conflict(to_start, to_stop)
+            to_start, to_stop, restart = checked
+            conflict = self._resource_conflict(to_start + restart, to_stop)
             if conflict:
                 log.error('Could not switch controllers: %s', conflict)
                 return False
-            if not to_start and not to_stop:
+            if not to_start and not to_stop and not restart:
                 return True
-            request = _Switch(to_start, to_stop)
+            request = _Switch(to_start, to_stop, restart)
             self._pending.append(request)
         if request.done.wait(timeout):
             return request.result[0]
@@ -232,25 +242,60 @@ class ControllerManager:
         return False
 
     def _checked(
-        self, names: Sequence[str], verb: str, ok: Callable[[Controller], bool], strictness: int
-    ) -> Optional[List[_Loaded]]:
-        out: List[_Loaded] = []
+        self, start: Sequence[str], stop: Sequence[str], strictness: int
+    ) -> Optional[Tuple[List[_Loaded], List[_Loaded], List[_Loaded]]]:
+        """(to start, to stop, to start again) by controller_manager.cpp's rules (lock held);
+        None, logged, when the switch is refused. Unknown names: STRICT refuses, BEST_EFFORT
+        skips. Stopping a controller that is not running: STRICT refuses, BEST_EFFORT skips.
+        Starting one already running: STRICT refuses, BEST_EFFORT starts it again (its
+        ``starting`` runs once more, with no ``stopping``: ControllerBase::startRequest from
+        RUNNING). A running controller named in both lists is refused whatever the strictness;
+        one not running named in both is, under BEST_EFFORT, started."""
         skipped: Dict[str, List[str]] = {}  # why -> names: a long list of bad names, one message
-        for name in names:
-            entry = self._loaded.get(name)
-            if entry is None or not ok(entry.controller):
-                why = (
-                    'is not loaded'
-                    if entry is None
-                    else ('is already running' if verb == 'start' else 'is not running')
-                )
+        for verb, names in (('start', start), ('stop', stop)):
+            for name in names:
+                if name in self._loaded:
+                    continue
                 if strictness == STRICT:
-                    log.error("Could not %s controller '%s': it %s", verb, shown(name), why)
+                    log.error("Could not %s controller '%s': it is not loaded", verb, shown(name))
                     return None
-                skipped.setdefault(why, []).append(name)
+                skipped.setdefault('%s: is not loaded' % verb, []).append(name)
+        start_set, stop_set = set(start), set(stop)
+        to_start: List[_Loaded] = []
+        to_stop: List[_Loaded] = []
+        restart: List[_Loaded] = []
+        for entry in self._loaded.values():  # in load order, as upstream
+            running = entry.controller.running
+            in_stop, in_start = entry.name in stop_set, entry.name in start_set
+            if in_stop and not running:
+                if strictness == STRICT:
+                    log.error("Could not stop controller '%s': it is not running", entry.name)
+                    return None
+                skipped.setdefault('stop: is not running', []).append(entry.name)
+                in_stop = False
+            if in_start and running and not in_stop:
+                if strictness == STRICT:
+                    log.error("Could not start controller '%s': it is already running", entry.name)
+                    return None
+                log.warning(
+                    "Controller '%s' is already running: starting it again (BEST_EFFORT)",
+                    entry.name,
+                )
+                restart.append(entry)
                 continue
-            out.append(entry)
-        for why, bad in skipped.items():
+            if in_stop and in_start:
+                log.error(
+                    "Could not start or stop controller '%s' because of conflicting switching "
+                    'command (it is named in both lists)',
+                    entry.name,
+                )
+                return None
+            if in_stop:
+                to_stop.append(entry)
+            elif in_start:
+                to_start.append(entry)
+        for key, bad in skipped.items():
+            verb, why = key.split(': ')
             log.warning(
                 'Not %s controller%s %s: %s %s',
                 'starting' if verb == 'start' else 'stopping',
@@ -259,7 +304,7 @@ class ControllerManager:
                 'it' if len(bad) == 1 else 'they',
                 why.replace('is ', 'are ') if len(bad) > 1 else why,
             )
-        return out
+        return to_start, to_stop, restart
 
     def _resource_conflict(self, start: List[_Loaded], stop: List[_Loaded]) -> Optional[str]:
         owners: Dict[Tuple[str, str], str] = {}
@@ -275,6 +320,35 @@ class ControllerManager:
                             )
                         owners[(iface, joint)] = entry.name
         return None
+
+    def reload_controller_libraries(self, force_kill: bool) -> bool:
+        """reload_controller_libraries as controller_manager.cpp: refused while any controller
+        is loaded, unless ``force_kill``, which stops (BEST_EFFORT, waiting for the next update)
+        and unloads every controller first. Controller types are compiled in: there is no
+        library to reload after that."""
+        with self._lock:
+            names = list(self._loaded)
+            running = [n for n in names if self._loaded[n].controller.running]
+        if names and not force_kill:
+            log.error(
+                'Cannot reload controller libraries because there are still %d controllers '
+                'loaded (%s); unload them first or ask with force_kill',
+                len(names),
+                listed(names),
+            )
+            return False
+        if names:
+            log.info('Killing all running controllers to reload controller libraries')
+            if not self.switch_controller([], running, BEST_EFFORT):
+                log.error('Cannot reload controller libraries: failed to stop running controllers')
+                return False
+            for name in names:
+                try:
+                    self.unload_controller(name)
+                except ControllerManagerError as exc:
+                    log.error('Cannot reload controller libraries: %s', exc)
+                    return False
+        return True
 
     def list_controllers(self) -> List[ControllerInfo]:
         """``[(name, type, state, claimed_resources)]`` in load order."""
@@ -305,16 +379,22 @@ class ControllerManager:
             requests, self._pending = self._pending, []
             for request in requests:
                 # Checked again here: an earlier request may have claimed the same joints.
-                conflict = self._resource_conflict(request.start, request.stop)
+                conflict = self._resource_conflict(request.start + request.restart, request.stop)
                 if conflict:
                     log.error('Could not switch controllers: %s', conflict)
                     request.result.append(False)
                     continue
                 request.result.append(True)
                 for entry in request.stop:
-                    entry.controller.stop_request(time_ns)
-                for entry in request.start:
+                    if entry.controller.running:  # as stopControllers: only what runs
+                        entry.controller.stop_request(time_ns)
+                for entry in request.start + request.restart:
                     entry.controller.start_request(time_ns)
+                if isinstance(self.robot_hw, SwitchingRobotHW):
+                    self.robot_hw.do_switch(
+                        [e.controller.claimed_resources() for e in request.start],
+                        [e.controller.claimed_resources() for e in request.stop],
+                    )
             self._running = tuple(
                 e.controller for e in self._loaded.values() if e.controller.running
             )

@@ -82,11 +82,7 @@ class ControllerManagerServices:
         )
 
     def _reload(self, req):
-        # Controller types are compiled in: there is no library to reload.
-        return (
-            not [n for n, _, s, _ in self.manager.list_controllers() if s == 'running']
-            or req.force_kill
-        )
+        return self.manager.reload_controller_libraries(bool(req.force_kill))
 
     def shutdown(self):
         for s in self._services:
