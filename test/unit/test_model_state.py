@@ -9,6 +9,7 @@ from arm1.description.sdf_world import WorldConfig
 from arm1.sim import model_state as ms
 from arm1.sim.model_state import State, StateError
 from arm1.sim.simulation import Simulation
+from arm1.sim.wrenches import JointEfforts, Wrenches
 
 # The inertial sits off the link frame, so pybullet's centre-of-mass pose must be converted.
 BOX = '<robot name="box">%s</robot>' % box_link('body', xyz='0.02 0 0')
@@ -115,7 +116,7 @@ def test_gravity_change_lets_a_free_box_float(sim):
 def test_wrench_with_duration_pushes_then_stops(sim):
     props = ms.get_physics_properties(sim)
     ms.set_physics_properties(sim, ms.PhysicsProperties(props.time_step, 1000.0, (0, 0, 0)))
-    wrenches = ms.Wrenches()
+    wrenches = Wrenches()
     sim.before_step.append(lambda now: wrenches.apply(sim, now))
     # 1 N on 0.5 kg for 0.1 s: 0.2 m/s along +x, then coasting at that speed.
     wrenches.add(sim, 'box::body', '', (0, 0, 0), (1, 0, 0), (0, 0, 0), 0, 100_000_000)
@@ -132,7 +133,7 @@ def test_wrench_with_duration_pushes_then_stops(sim):
 
 
 def test_wrench_unknown_body_and_frame_are_named(sim):
-    w = ms.Wrenches()
+    w = Wrenches()
     with pytest.raises(StateError, match=r'ApplyBodyWrench: body \[ghost\] does not exist'):
         w.add(sim, 'ghost', '', (0, 0, 0), (1, 0, 0), (0, 0, 0), 0, -1)
     with pytest.raises(StateError, match=r'reference_frame \[nope\] not found'):
@@ -142,7 +143,7 @@ def test_wrench_unknown_body_and_frame_are_named(sim):
 def test_joint_effort_turns_a_free_joint_for_its_duration(sim):
     props = ms.get_physics_properties(sim)
     ms.set_physics_properties(sim, ms.PhysicsProperties(props.time_step, 1000.0, (0, 0, 0)))
-    efforts = ms.JointEfforts()
+    efforts = JointEfforts()
     sim.before_step.append(lambda now: efforts.apply(sim, now))
     efforts.add(sim, 'hinge', 0.01, 0, 50_000_000)
     for _ in range(50):
@@ -195,7 +196,7 @@ def test_set_joint_properties_stops_hold_a_pushed_joint(sim):
     sim.models['two'].robot.set_joint_positions({'hinge': 0.0})
     ms.set_model_state(sim, 'two', State((1, 0, 0)), '')
     ms.set_joint_properties(sim, 'two::hinge', [0.0], [-0.2], [0.2])
-    efforts = ms.JointEfforts()
+    efforts = JointEfforts()
     sim.before_step.append(lambda now: efforts.apply(sim, now))
     efforts.add(sim, 'hinge', 0.05, 0, -1)
     for _ in range(1000):

@@ -37,6 +37,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 from ...sim import model_state as ms
 from ...sim.model_state import State, StateError
 from ...sim.simulation import Simulation
+from ...sim.wrenches import JointEfforts, Wrenches
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop
 
@@ -140,8 +141,8 @@ class GazeboStateApi:
     ) -> None:
         self.sim, self.calls, self.loop = sim, calls, loop
         self.on_update_rate = on_update_rate
-        self.wrenches = ms.Wrenches()
-        self.efforts = ms.JointEfforts()
+        self.wrenches = Wrenches()
+        self.efforts = JointEfforts()
         self._seq: Dict[str, int] = {}  # get_model_state's header.seq, per model as upstream
         self._services = [
             rospy.Service('~get_model_state', GetModelState, self._get_model_state),
