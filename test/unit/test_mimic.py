@@ -129,3 +129,141 @@ def test_gripper_mimic_finger_mirrors_the_leader(sim):
     left, right = positions(model, ['left_finger_joint', 'right_finger_joint'])
     assert right == pytest.approx(-left, abs=1e-3)
     assert left > 0.02  # the leader was not dragged back by the follower's motor
+
+
+# ------------------------------------------------ a follower on the leader's own child link
+# lead turns link a about z at the origin; follow turns link b about z at 0.1 m along a, b's
+# centre of mass on its axis (no swing of b's mass can turn a), b a 6 cm bar along a's y.
+CHAIN = """<robot name="chain"><link name="world"/>
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial></link>
+  <link name="a"><inertial><origin xyz="0.05 0 0"/><mass value="0.1"/>
+    <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial></link>
+  <link name="b"><inertial><mass value="0.05"/>
+    <inertia ixx="2e-5" ixy="0" ixz="0" iyy="2e-5" iyz="0" izz="2e-5"/></inertial>
+    <collision><origin xyz="0.03 0 0"/><geometry><box size="0.06 0.01 0.01"/></geometry>
+    </collision></link>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+  <joint name="lead" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="%(lead_effort)s" velocity="2"/></joint>
+  <joint name="follow" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0.1 0 0" rpy="0 0 1.5708"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="%(follow_effort)s" velocity="2"/>
+    <mimic joint="lead" offset="%(offset)s"/></joint>
+</robot>"""
+
+
+@pytest.fixture
+def bare():
+    """A bare pybullet client without gravity: nothing but the joints' own forces."""
+    import pybullet as pb
+
+    cid = pb.connect(pb.DIRECT)
+    pb.setTimeStep(0.001, physicsClientId=cid)
+    pb.setGravity(0, 0, 0, physicsClientId=cid)
+    yield cid
+    pb.disconnect(cid)
+
+
+def chain_robot(client, tmp_path, lead_effort=1.0, follow_effort=2.0, offset=0.3):
+    from arm1.physics.robot import Robot
+
+    path = tmp_path / 'chain.urdf'
+    path.write_text(
+        CHAIN % dict(lead_effort=lead_effort, follow_effort=follow_effort, offset=offset)
+    )
+    robot = Robot(client, str(path), fixed_base=True)
+    robot.set_mimics([('follow', 'lead', 1.0, offset, follow_effort, 0.0)])
+    return robot
+
+
+def step_chain(client, robot, steps, lead_torque=None):
+    """``lead_torque(position, velocity)``: the leader's controller, None for a free joint."""
+    import pybullet as pb
+
+    lead = robot.joint_index['lead']
+    for _ in range(steps):
+        if lead_torque is not None:
+            q, v = pb.getJointState(robot.body, lead, physicsClientId=client)[:2]
+            robot.apply_efforts([lead], [lead_torque(q, v)])
+        robot.follow_mimics()
+        pb.stepSimulation(physicsClientId=client)
+        robot.measure_mimics()
+    return [pos for pos, _ in robot.read(robot.indices(['lead', 'follow']))]
+
+
+def test_a_follower_on_the_leaders_child_puts_no_torque_into_a_free_leader(bare, tmp_path):
+    robot = chain_robot(bare, tmp_path)
+    lead, follow = step_chain(bare, robot, 500)
+    assert follow == pytest.approx(0.3, abs=1e-3)  # from 0 to leader + offset
+    assert lead == pytest.approx(0.0, abs=1e-4)  # the free leader did not turn back
+
+
+def test_without_handing_on_the_reaction_the_free_leader_would_turn(bare, tmp_path):
+    """The test above can fail: the motor's reaction alone turns a free leader visibly."""
+    robot = chain_robot(bare, tmp_path)
+    robot.mimics[0].reroute = None
+    lead, _ = step_chain(bare, robot, 500)
+    assert lead < -5e-3
+
+
+def _pushing_on_a_post(client, robot, reroute=True):
+    """b turns toward a static post (a's leader held at 0 by a weak PD, 0.5 N m at most)
+    and is stopped there: returns (leader position, follower position, motor effort)."""
+    import pybullet as pb
+
+    if not reroute:
+        robot.mimics[0].reroute = None
+    post = pb.createCollisionShape(
+        pb.GEOM_BOX, halfExtents=[0.005, 0.04, 0.02], physicsClientId=client
+    )
+    pb.createMultiBody(0, post, -1, [0.065, 0.05, 0], physicsClientId=client)
+
+    def pd(q, v):
+        return max(-0.5, min(0.5, -5.0 * q - 0.1 * v))
+
+    lead, follow = step_chain(client, robot, 2000, pd)
+    effort = pb.getJointState(robot.body, robot.joint_index['follow'], physicsClientId=client)[3]
+    return lead, follow, effort
+
+
+def test_a_blocked_follower_pushes_with_its_effort_limit_and_the_leader_holds(bare, tmp_path):
+    robot = chain_robot(bare, tmp_path, lead_effort=0.5, follow_effort=2.0, offset=0.6)
+    lead, follow, effort = _pushing_on_a_post(bare, robot)
+    assert follow < 0.5  # stopped by the post short of its 0.6
+    assert abs(effort) == pytest.approx(2.0, rel=1e-3)  # pushing with all it has
+    assert abs(lead) < 0.01  # the 0.5 N m leader was not pushed off by 2 N m
+    _, velocity = robot.read(robot.indices(['lead']))[0]
+    assert abs(velocity) < 1e-3
+
+
+def test_without_handing_on_the_reaction_a_blocked_follower_pushes_its_leader_away(bare, tmp_path):
+    robot = chain_robot(bare, tmp_path, lead_effort=0.5, follow_effort=2.0, offset=0.6)
+    lead, _, effort = _pushing_on_a_post(bare, robot, reroute=False)
+    assert abs(lead) > 0.05
+    assert abs(effort) < 1.0
+
+
+def test_the_hardware_interface_never_writes_a_mimic_follower():
+    """gripper_bot's right finger has an effort transmission and a <mimic>: it is read
+    (joint_states carry it) but no effort is ever written to it."""
+    from conftest import FakeRobot
+
+    from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+
+    with open(GRIPPER) as f:
+        model = parse_urdf(f.read())
+    robot = FakeRobot(list(model.joints))
+    hw = DefaultRobotHWSim(model, robot, 0.001)
+    assert 'right_finger_joint' in hw.joint_names()
+    robot.set('right_finger_joint', 0.02, 0.1)
+    hw.read()
+    assert hw.handles['right_finger_joint'].position == 0.02
+    for h in hw.handles.values():
+        h.command = 3.0
+    hw.write()
+    follower = robot.joint_index['right_finger_joint']
+    ((indices, efforts),) = robot.applied
+    assert follower not in indices
+    assert robot.joint_index['left_finger_joint'] in indices
+    assert hw.handles['right_finger_joint'].effort == 0.0

@@ -4,6 +4,8 @@ import itertools
 
 import pybullet as p
 
+from . import mimic
+
 IDENTITY = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
 
@@ -87,8 +89,7 @@ class Robot:
         self.gravity_off = []
         if options is not None:
             self._apply_link_options(options, self_collide)
-        # (follower index, leader index, multiplier, offset, max force, sensitiveness)
-        self.mimics = []
+        self.mimics = []  # physics.mimic.MimicJoint, one per follower
 
     def _apply_link_options(self, options, self_collide):
         cid = self.client
@@ -133,35 +134,22 @@ class Robot:
     def set_mimics(self, mimics):
         """``[(follower, leader, multiplier, offset, max_force, sensitiveness)]`` by joint name:
         each follower is driven toward leader * multiplier + offset before every step."""
-        self.mimics = [
-            (self.joint_index[f], self.joint_index[lead], m, o, force, sens)
-            for f, lead, m, o, force, sens in mimics
-        ]
+        self.mimics = mimic.mimic_joints(
+            self.body,
+            self.client,
+            [
+                (self.joint_index[f], self.joint_index[lead], m, o, force, sens)
+                for f, lead, m, o, force, sens in mimics
+            ],
+        )
 
     def follow_mimics(self):
-        """A position motor per follower, capped at its max force: a stiff, physical link
-        that pushes like a finger (a teleport would pass through what it grips), and,
-        unlike a gear constraint, takes an offset. Set last before the step, it overrides any
-        command the hardware interface gave the follower."""
-        for follower, leader, multiplier, offset, force, sensitiveness in self.mimics:
-            lead, lead_vel = p.getJointState(self.body, leader, physicsClientId=self.client)[:2]
-            target = lead * multiplier + offset
-            if sensitiveness > 0:
-                pos = p.getJointState(self.body, follower, physicsClientId=self.client)[0]
-                if abs(target - pos) < sensitiveness:
-                    target = pos
-            # positionGain 0.2 settles a light finger in a few steps; 1.0 oscillates.
-            p.setJointMotorControl2(
-                self.body,
-                follower,
-                p.POSITION_CONTROL,
-                targetPosition=target,
-                targetVelocity=lead_vel * multiplier,
-                force=force,
-                positionGain=0.2,
-                velocityGain=1.0,
-                physicsClientId=self.client,
-            )
+        """Before a step: physics.mimic.follow (overrides any command given to a follower)."""
+        mimic.follow(self.body, self.client, self.mimics)
+
+    def measure_mimics(self):
+        """After a step: physics.mimic.measure."""
+        mimic.measure(self.body, self.client, self.mimics)
 
     def indices(self, joint_names):
         return [self.joint_index[n] for n in joint_names]

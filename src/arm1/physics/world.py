@@ -99,6 +99,9 @@ class World:
                     gravity = _gravity(self.client)
                 _cancel_weight(robot, gravity)
         p.stepSimulation(physicsClientId=self.client)
+        for robot in self.robots:
+            if robot.mimics:
+                robot.measure_mimics()
 
     def reset(self):
         for robot in self.robots:

@@ -11,6 +11,9 @@ transmission's hardware interface says (default_robot_hw_sim.cpp's writeSim):
 - VelocityJointInterface: the command, clamped to +-max_velocity; without pid gains a
   velocity motor capped at the effort limit (Gazebo's SetParam("vel")), with them a PID.
 
+A mimic follower (URDF ``<mimic>`` or roboticsgroup's plugin) is read but never written:
+physics.mimic drives it, as the plugin's SetPosition overrides any force in Gazebo.
+
 The pid gains are ``<robotNamespace>/gazebo_ros_control/pid_gains/<joint>``: the ROS
 layer reads them and hands them in as a plain dict (set_pid_gains).
 """
@@ -244,7 +247,12 @@ class DefaultRobotHWSim:
             self.handles[joint.name] = JointHandle(joint.name, joint.type, joint.limits, interface)
         self._ordered = [self.handles[n] for n in sorted(self.handles)]
         self._indices = robot.indices([h.name for h in self._ordered])
-        self._drives = [_Drive(h, i) for h, i in zip(self._ordered, self._indices)]
+        # A mimic follower is read like any joint but never written: the mimic drives it, and
+        # an effort or set position from here would fight that (physics.mimic).
+        followers = {m.follower for m in description.mimics}
+        self._drives = [
+            _Drive(h, i) for h, i in zip(self._ordered, self._indices) if h.name not in followers
+        ]
         self.set_pid_gains(pid_gains or {})
 
     def set_joint_limits(self, joint_limits: Mapping[str, Any]) -> None:

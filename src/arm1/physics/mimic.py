@@ -1,0 +1,128 @@
+"""Mimic joints in pybullet: a follower driven toward leader * multiplier + offset.
+
+roboticsgroup's mimic plugin (and Gazebo's URDF <mimic> handling through it) sets the
+follower's position every iteration: nothing of it reaches the leader's joint, but a set
+finger also passes through what it grips. Here the follower is a position motor capped at
+its max force, so it pushes on what it touches, and the motor's reaction, which pybullet
+applies to the follower's parent link, is kept off the leader's joint: when that parent
+hangs below the leader (the leader's child link or deeper), the reaction is handed on to
+the leader's parent link instead, so the robot as a whole still feels it (no net force
+appears from nowhere) while the leader's joint does not. Without that, the reaction feeds
+the leader's controller, which can run away.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import List, Optional, Sequence, Tuple
+
+import pybullet as p
+
+# positionGain 0.2 settles a light finger in a few steps; 1.0 oscillates.
+POSITION_GAIN = 0.2
+VELOCITY_GAIN = 1.0
+
+
+@dataclass
+class MimicJoint:
+    """One follower, by pybullet joint index."""
+
+    follower: int
+    leader: int
+    multiplier: float
+    offset: float
+    max_force: float
+    sensitiveness: float
+    # Where the reaction goes, when the follower's parent link hangs below the leader:
+    # (follower's parent link, leader's parent link, True for a prismatic follower, its axis
+    # in its child link's frame over its squared length); None when the reaction does not
+    # pass through the leader's joint.
+    reroute: Optional[Tuple[int, int, bool, Tuple[float, float, float]]] = None
+    last_effort: float = 0.0  # the motor's force or torque in the last step
+
+
+def mimic_joints(
+    body: int, client: int, mimics: Sequence[Tuple[int, int, float, float, float, float]]
+) -> List[MimicJoint]:
+    """``[(follower, leader, multiplier, offset, max force, sensitiveness)]`` by joint index."""
+    out = []
+    for follower, leader, multiplier, offset, force, sensitiveness in mimics:
+        info = p.getJointInfo(body, follower, physicsClientId=client)
+        parent = info[16]
+        reroute = None
+        if _below(body, client, parent, leader):
+            leader_parent = p.getJointInfo(body, leader, physicsClientId=client)[16]
+            # pybullet keeps the URDF's axis as written, unnormalised, and a joint force f acts
+            # as f * axis / |axis|^2 (S^T applied = f): that is what is handed on.
+            axis = info[13]
+            norm2 = sum(a * a for a in axis) or 1.0
+            scaled = (axis[0] / norm2, axis[1] / norm2, axis[2] / norm2)
+            reroute = (parent, leader_parent, info[2] == p.JOINT_PRISMATIC, scaled)
+        out.append(MimicJoint(follower, leader, multiplier, offset, force, sensitiveness, reroute))
+    return out
+
+
+def _below(body: int, client: int, link: int, joint: int) -> bool:
+    """Whether ``link`` is the child link of ``joint`` or hangs below it (in pybullet a
+    joint and its child link share an index; the base is -1)."""
+    while link >= 0:
+        if link == joint:
+            return True
+        link = p.getJointInfo(body, link, physicsClientId=client)[16]
+    return False
+
+
+def follow(body: int, client: int, mimics: Sequence[MimicJoint]) -> None:
+    """Before a step: each follower's motor toward its target, set last so that it overrides
+    anything written to the follower, and last step's reaction kept off its leader."""
+    for m in mimics:
+        lead, lead_vel = p.getJointState(body, m.leader, physicsClientId=client)[:2]
+        target = lead * m.multiplier + m.offset
+        if m.sensitiveness > 0:
+            pos = p.getJointState(body, m.follower, physicsClientId=client)[0]
+            if abs(target - pos) < m.sensitiveness:
+                target = pos
+        p.setJointMotorControl2(
+            body,
+            m.follower,
+            p.POSITION_CONTROL,
+            targetPosition=target,
+            targetVelocity=lead_vel * m.multiplier,
+            force=m.max_force,
+            positionGain=POSITION_GAIN,
+            velocityGain=VELOCITY_GAIN,
+            physicsClientId=client,
+        )
+        if m.reroute is not None and m.last_effort:
+            _reroute(body, client, m)
+
+
+def measure(body: int, client: int, mimics: Sequence[MimicJoint]) -> None:
+    """After a step: the force each follower's motor applied, for the next step's reroute."""
+    for m in mimics:
+        if m.reroute is not None:
+            m.last_effort = p.getJointState(body, m.follower, physicsClientId=client)[3]
+
+
+def _reroute(body: int, client: int, m: MimicJoint) -> None:
+    """The motor pushed the follower's child with ``last_effort`` along its axis and its
+    parent with the opposite: give the parent that back and the leader's parent the
+    reaction instead (one step late: pybullet reports a motor's force after the step)."""
+    assert m.reroute is not None
+    parent, leader_parent, prismatic, axis_local = m.reroute
+    # pybullet keeps a joint's axis in its child link's (centre of mass) frame.
+    state = p.getLinkState(body, m.follower, computeForwardKinematics=True, physicsClientId=client)
+    com, orn = state[0], state[1]
+    matrix = p.getMatrixFromQuaternion(orn)
+    axis = [sum(matrix[3 * r + c] * axis_local[c] for c in range(3)) for r in range(3)]
+    effort = m.last_effort
+    push = [effort * a for a in axis]
+    pull = [-v for v in push]
+    if prismatic:
+        # The motor's force acts along the axis through the child's centre of mass: the
+        # same line for both links keeps the moment balanced too.
+        p.applyExternalForce(body, parent, push, com, p.WORLD_FRAME, physicsClientId=client)
+        p.applyExternalForce(body, leader_parent, pull, com, p.WORLD_FRAME, physicsClientId=client)
+    else:
+        p.applyExternalTorque(body, parent, push, p.WORLD_FRAME, physicsClientId=client)
+        p.applyExternalTorque(body, leader_parent, pull, p.WORLD_FRAME, physicsClientId=client)
