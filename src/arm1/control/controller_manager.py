@@ -18,7 +18,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
 
 from .controller import Controller, ControllerError, State
 from .interfaces import NodeFactory, NodeHandle, RobotHW
-from .registry import CONTROLLER_TYPES, cpp_only
+from .registry import CONTROLLER_TYPES
 
 log = logging.getLogger('arm1.control')
 
@@ -156,14 +156,6 @@ class ControllerManager:
                 % (name, ns)
             )
         cls = CONTROLLER_TYPES.get(type_name)
-        if cls is None and cpp_only(str(type_name)):
-            controller_nh.shutdown()
-            raise ControllerManagerError(
-                "Could not load controller '%s': type '%s' is a C++ controller plugin of %s, "
-                "which cannot load into arm1's Python controller manager (its controller "
-                'types: %s)'
-                % (name, type_name, cpp_only(str(type_name)), ', '.join(self.controller_types()))
-            )
         if cls is None:
             controller_nh.shutdown()
             raise ControllerManagerError(
