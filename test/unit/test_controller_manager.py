@@ -65,6 +65,8 @@ def test_controller_types():
         JPC,
         'effort_controllers/JointTrajectoryController',
         'effort_controllers/JointVelocityController',
+        'franka_control/FrankaStateController',
+        'franka_gazebo/FrankaGripperSim',
         JSC,
         'position_controllers/GripperActionController',
         'position_controllers/JointGroupPositionController',

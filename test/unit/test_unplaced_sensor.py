@@ -30,14 +30,18 @@ def test_a_sensor_on_a_missing_link_is_left_out_and_named():
     assert any("'r200'" in line and "'camera_link'" in line for line in lines), lines
 
 
-def test_a_robot_sim_type_other_than_the_default_is_named_at_spawn():
-    urdf = URDF.replace(
-        '</robot>',
-        '<gazebo><plugin name="c" filename="libgazebo_ros_control.so">'
-        '<robotSimType>franka_gazebo/FrankaHWSim</robotSimType></plugin></gazebo></robot>',
-    )
-    lines = unimplemented(parse_urdf(urdf), 'panda')
-    assert any('robotSimType franka_gazebo/FrankaHWSim' in line for line in lines), lines
+def test_a_robot_sim_type_the_stand_in_lacks_is_named_at_spawn():
+    def with_type(sim_type):
+        return URDF.replace(
+            '</robot>',
+            '<gazebo><plugin name="c" filename="libgazebo_ros_control.so">'
+            '<robotSimType>%s</robotSimType></plugin></gazebo></robot>' % sim_type,
+        )
+
+    lines = unimplemented(parse_urdf(with_type('acme_gazebo/AcmeHWSim')), 'acme')
+    assert any('robotSimType acme_gazebo/AcmeHWSim' in line for line in lines), lines
+    franka = unimplemented(parse_urdf(with_type('franka_gazebo/FrankaHWSim')), 'panda')
+    assert not any('robotSimType' in line for line in franka), franka  # sim/franka_hw_sim.py
     default = URDF.replace(
         '</robot>',
         '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo></robot>',

@@ -17,8 +17,8 @@ import threading
 from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
 
 from .controller import Controller, ControllerError, State
-from .interfaces import NodeFactory, NodeHandle, RobotHW
-from .registry import CONTROLLER_TYPES
+from .interfaces import NodeFactory, NodeHandle, RobotHW, SwitchingRobotHW
+from .registry import CONTROLLER_TYPES, cpp_only
 
 log = logging.getLogger('arm1.control')
 
@@ -156,6 +156,14 @@ class ControllerManager:
                 % (name, ns)
             )
         cls = CONTROLLER_TYPES.get(type_name)
+        if cls is None and cpp_only(str(type_name)):
+            controller_nh.shutdown()
+            raise ControllerManagerError(
+                "Could not load controller '%s': type '%s' is a C++ controller plugin of %s, "
+                "which cannot load into arm1's Python controller manager (its controller "
+                'types: %s)'
+                % (name, type_name, cpp_only(str(type_name)), ', '.join(self.controller_types()))
+            )
         if cls is None:
             controller_nh.shutdown()
             raise ControllerManagerError(
@@ -382,6 +390,11 @@ class ControllerManager:
                         entry.controller.stop_request(time_ns)
                 for entry in request.start + request.restart:
                     entry.controller.start_request(time_ns)
+                if isinstance(self.robot_hw, SwitchingRobotHW):
+                    self.robot_hw.do_switch(
+                        [e.controller.claimed_resources() for e in request.start],
+                        [e.controller.claimed_resources() for e in request.stop],
+                    )
             self._running = tuple(
                 e.controller for e in self._loaded.values() if e.controller.running
             )

@@ -10,7 +10,18 @@ Joints come from a RobotHW (robot_hw_sim.py simulates one).
 
 from __future__ import annotations
 
-from typing import Any, Callable, Dict, List, Mapping, Optional, Protocol, runtime_checkable
+from typing import (
+    Any,
+    Callable,
+    Dict,
+    List,
+    Mapping,
+    Optional,
+    Protocol,
+    Sequence,
+    Tuple,
+    runtime_checkable,
+)
 
 from .hardware_interface import JointHandle
 
@@ -97,6 +108,9 @@ class ConfigServer(Protocol):
 
 NodeFactory = Callable[[str], NodeHandle]  # namespace -> node handle
 
+# A controller's claimed resources: [(hardware interface, [joint names])]
+Resources = List[Tuple[str, List[str]]]
+
 
 class RobotHW(Protocol):
     """hardware_interface::RobotHW as controllers use it: joint handles by name."""
@@ -121,3 +135,19 @@ class RobotHWSim(RobotHW, Protocol):
     def write(self) -> None:
         """The handles' commands, saturated, to the simulation."""
         ...
+
+
+@runtime_checkable
+class SwitchingRobotHW(Protocol):
+    """A RobotHW that acts on controller switches (RobotHW::doSwitch), as FrankaHWSim does."""
+
+    def do_switch(self, start: Sequence[Resources], stop: Sequence[Resources]) -> None:
+        """The claimed resources of the controllers just started and stopped."""
+        ...
+
+
+@runtime_checkable
+class TimedRobotHWSim(Protocol):
+    """A RobotHWSim whose read wants the time (readSim(time, period)), as FrankaHWSim's."""
+
+    def read_at(self, time_ns: int, period_ns: int) -> None: ...

@@ -12,7 +12,7 @@ import math
 from typing import Optional
 
 from .controller_manager import ControllerManager
-from .interfaces import RobotHWSim
+from .interfaces import RobotHWSim, TimedRobotHWSim
 
 log = logging.getLogger('arm1.control')
 
@@ -61,7 +61,10 @@ class ControlLoop:
         due = elapsed >= self.period_ns
         if due:
             self.last_update_ns = now_ns
-            self.hw.read()
+            if isinstance(self.hw, TimedRobotHWSim):
+                self.hw.read_at(now_ns, elapsed)
+            else:
+                self.hw.read()
             self.manager.update(now_ns, elapsed)
         self.hw.write()
         return due

@@ -11,6 +11,8 @@ from typing import Dict, Tuple, Type
 
 from .controller import Controller
 from .forward_command_controller import FORWARD_CONTROLLERS
+from .franka_gripper_sim import FrankaGripperSim
+from .franka_state_controller import FrankaStateController
 from .gripper_action_controller import GripperActionController, PositionGripperActionController
 from .joint_position_controller import JointPositionController
 from .joint_state_controller import JointStateController
@@ -31,7 +33,15 @@ CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = (
     *FORWARD_CONTROLLERS,
     GripperActionController,
     PositionGripperActionController,
+    FrankaStateController,
+    FrankaGripperSim,
 )
+
+# Controller packages that are C++ plugins only (pluginlib libraries): no Python manager
+# can load them. Package -> the repository that ships it, for the error message.
+CPP_ONLY_PACKAGES = {
+    'franka_example_controllers': 'franka_ros',
+}
 
 
 def by_type_name(classes: Tuple[Type[Controller], ...]) -> Dict[str, Type[Controller]]:
@@ -46,3 +56,8 @@ def by_type_name(classes: Tuple[Type[Controller], ...]) -> Dict[str, Type[Contro
 
 
 CONTROLLER_TYPES = by_type_name(CONTROLLER_CLASSES)
+
+
+def cpp_only(type_name: str) -> str:
+    """The repository shipping ``type_name`` when it is a known C++-only controller, else ''."""
+    return CPP_ONLY_PACKAGES.get(type_name.split('/', 1)[0], '')

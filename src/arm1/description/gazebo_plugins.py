@@ -22,6 +22,8 @@ log = logging.getLogger('arm1.physics')
 # Plugins implemented outside sim.sensor_plugins' tables (whose keys count as handled too):
 # the rest are named in a warning at spawn.
 DEFAULT_ROBOT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
+# The RobotHWSim classes the stand-in has (sim/simulation.py makes them)
+ROBOT_SIM_TYPES = (DEFAULT_ROBOT_SIM_TYPE, 'franka_gazebo/FrankaHWSim')
 HANDLED_PLUGINS: Set[str] = {CONTROL_PLUGIN, *MIMIC_PLUGINS, CAMERA_PLUGIN, *DEPTH_PLUGINS}
 
 
@@ -150,9 +152,9 @@ def unimplemented(description: RobotModel, model: str, handled: Iterable[str] = 
             'Gazebo leaves it out' % (model, element.get('name', ''), link)
         )
     control = description.control_plugin
-    if control is not None and control.robot_sim_type != DEFAULT_ROBOT_SIM_TYPE:
-        # Gazebo loads the named RobotHWSim class (franka_gazebo/FrankaHWSim, ...); the
-        # stand-in has only the default one and says so rather than swap it in silently.
+    if control is not None and control.robot_sim_type not in ROBOT_SIM_TYPES:
+        # Gazebo loads the named RobotHWSim class; the stand-in has those of ROBOT_SIM_TYPES
+        # and says so rather than swap the default in silently.
         lines.append(
             "model '%s': robotSimType %s of gazebo_ros_control is not implemented by the "
             "stand-in: %s's joint interfaces are offered instead"

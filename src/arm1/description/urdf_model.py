@@ -54,8 +54,11 @@ class Joint:
 @dataclass
 class Transmission:
     name: str
-    joint: str
-    interfaces: list
+    joint: str  # the first <joint>: a SimpleTransmission has one
+    interfaces: list  # the first joint's hardware interfaces
+    type: str = 'transmission_interface/SimpleTransmission'
+    # every <joint> as (name, role): franka_hw's state and model transmissions name several
+    joints: list = field(default_factory=list)
 
 
 @dataclass
@@ -99,6 +102,8 @@ class RobotModel:
         """Joints named by a transmission, with their hardware interface."""
         out = []
         for t in self.transmissions:
+            if t.type.startswith('franka_hw/'):
+                continue  # franka_hw's state and model interfaces: no joint is driven by them
             joint = self.joints.get(t.joint)
             if joint is None:
                 raise UrdfError(
@@ -311,7 +316,18 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
         if tj is None:
             continue
         ifaces = [canonical_interface(h.text) for h in tj.findall('hardwareInterface')]
-        transmissions.append(Transmission(t.get('name') or '', tj.get('name') or '', ifaces))
+        transmissions.append(
+            Transmission(
+                t.get('name') or '',
+                tj.get('name') or '',
+                ifaces,
+                (t.findtext('type') or Transmission.type).strip(),
+                [
+                    (j.get('name') or '', (j.findtext('role') or '').strip())
+                    for j in t.findall('joint')
+                ],
+            )
+        )
     model = RobotModel(root.get('name') or '', roots[0], links, joints, transmissions)
     for g in root.findall('gazebo'):
         ref = g.get('reference')

@@ -11,7 +11,7 @@ import math
 import os
 import tempfile
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple, Union
 
 from ..control.controller_manager import ControllerManager
 from ..control.loop import ControlLoop, control_period_ns
@@ -27,12 +27,18 @@ from ..physics.robot import Robot, RobotLoadError
 from ..physics.sensor_manager import Camera, SensorManager
 from ..physics.sim_sensor import SimSensor
 from ..physics.world import World
+from .franka_hw_sim import ROBOT_SIM_TYPE as FRANKA_SIM_TYPE
+from .franka_hw_sim import FrankaHWSim, FrankaHWSimError
 from .robot_hw_sim import DefaultRobotHWSim
 from .sensor_plugins import build_sensors
 
 
 class SpawnError(ValueError):
     pass
+
+
+# The RobotHWSim a gazebo_ros_control plugin's <robotSimType> makes (default or Franka's)
+RobotHWSimType = Union[DefaultRobotHWSim, FrankaHWSim]
 
 
 class Plugin(Protocol):
@@ -48,7 +54,7 @@ class Model:
     name: str
     description: RobotModel
     robot: Robot
-    hw: Optional[DefaultRobotHWSim] = None  # when the URDF has the gazebo_ros_control plugin
+    hw: Optional[RobotHWSimType] = None  # when the URDF has the gazebo_ros_control plugin
     controller_manager: Optional[ControllerManager] = None
     control: Optional[ControlLoop] = None  # when its controllers update; with the manager
     namespace: str = ''
@@ -69,7 +75,7 @@ class PreparedUrdf:
     load_args: Tuple[str, Tuple[float, ...], Tuple[float, ...], bool, BodyOptions]
 
 
-ControllerManagerFactory = Callable[[DefaultRobotHWSim, str], ControllerManager]
+ControllerManagerFactory = Callable[[RobotHWSimType, str], ControllerManager]
 
 
 class Simulation:
@@ -245,7 +251,13 @@ class Simulation:
         if ns is None:
             ns = robot_namespace or model.name
         model.namespace = '/' + ns.strip('/')
-        model.hw = DefaultRobotHWSim(model.description, model.robot, self.period)
+        if plugin.robot_sim_type == FRANKA_SIM_TYPE:
+            try:
+                model.hw = FrankaHWSim(model.description, model.robot, self.period)
+            except FrankaHWSimError as exc:
+                raise SpawnError('%s: %s' % (FRANKA_SIM_TYPE, exc))
+        else:
+            model.hw = DefaultRobotHWSim(model.description, model.robot, self.period)
         if factory is not None:
             model.controller_manager = factory(model.hw, model.namespace)
 

@@ -30,6 +30,7 @@ from ..control.controller_manager import STRICT, ControllerManager
 from ..control.joint_position_controller import JointPositionController
 from ..control.switching import switch_while_updating
 from ..description.sdf_world import WorldConfig, read_world
+from ..sim.robot_hw_sim import DefaultRobotHWSim
 from ..sim.simulation import Simulation
 from .local_ros import LocalRos
 from .metrics import FINAL_WINDOW, step_metrics
@@ -148,6 +149,10 @@ class StepRig:
         )
         if self.model.controller_manager is None or self.model.hw is None:
             raise ValueError("robot '%s' has no gazebo_ros_control plugin: nothing to tune" % name)
+        if not isinstance(self.model.hw, DefaultRobotHWSim):
+            raise ValueError(
+                "robot '%s': the tuner drives gazebo_ros_control's DefaultRobotHWSim only" % name
+            )
         self.cm = self.model.controller_manager
         self.hw = self.model.hw
         self.namespace = self.model.namespace

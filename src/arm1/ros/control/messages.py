@@ -7,8 +7,10 @@ from typing import Any, Callable, Dict, List, Tuple
 
 import rospy
 from control_msgs.msg import JointControllerState, JointTrajectoryControllerState
+from franka_msgs.msg import FrankaState
+from geometry_msgs.msg import WrenchStamped
 from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64, Float64MultiArray
+from std_msgs.msg import Bool, Float64, Float64MultiArray
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from ...control.interfaces import Fields
@@ -24,6 +26,11 @@ def _fill_stamped(msg: Any, fields: Fields) -> None:
             msg.header.stamp = to_time(value)
         else:
             setattr(msg, key, value)
+
+
+def _fill_fields(msg: Any, fields: Fields) -> None:
+    for key, value in fields.items():
+        setattr(msg, key, value)
 
 
 def _fill_data(msg: Any, value: Any) -> None:
@@ -54,6 +61,15 @@ def _fill_trajectory_state(msg: Any, fields: Fields) -> None:
             setattr(msg, key, point)
         else:
             setattr(msg, key, value)
+
+
+def _fill_wrench(msg: Any, fields: Fields) -> None:
+    """geometry_msgs/WrenchStamped from ``stamp``, ``frame_id`` and ``wrench`` (6 numbers:
+    force, then torque)."""
+    msg.header.stamp = to_time(fields['stamp'])
+    msg.header.frame_id = fields.get('frame_id', '')
+    f, t = msg.wrench.force, msg.wrench.torque
+    f.x, f.y, f.z, t.x, t.y, t.z = fields['wrench']
 
 
 def read_data(msg: Any) -> Any:
@@ -104,6 +120,9 @@ MESSAGES: Dict[str, Tuple[type, Fill]] = {
         _fill_trajectory_state,
     ),
     'trajectory_msgs/JointTrajectory': (JointTrajectory, _fill_stamped),
+    'std_msgs/Bool': (Bool, _fill_fields),
+    'franka_msgs/FrankaState': (FrankaState, _fill_stamped),
+    'geometry_msgs/WrenchStamped': (WrenchStamped, _fill_wrench),
 }
 # type name -> what a subscriber's callback gets from a message (default: its ``data``)
 READERS: Dict[str, Callable[[Any], Any]] = {
@@ -120,8 +139,40 @@ def _actions() -> Dict[str, Tuple[Any, Callable[[Any], Any], type, type, Fill]]:
         GripperCommandFeedback,
         GripperCommandResult,
     )
+    from franka_gripper.msg import (
+        GraspAction,
+        GraspFeedback,
+        GraspResult,
+        HomingAction,
+        HomingFeedback,
+        HomingResult,
+        MoveAction,
+        MoveFeedback,
+        MoveResult,
+        StopAction,
+        StopFeedback,
+        StopResult,
+    )
 
+    def read_fields(goal: Any) -> Dict[str, Any]:
+        """A flat goal (franka_gripper's) as its fields; a nested message as a dict too."""
+        out: Dict[str, Any] = {}
+        for name in goal.__slots__:
+            value = getattr(goal, name)
+            out[name] = read_fields(value) if hasattr(value, '__slots__') else value
+        return out
+
+    franka = {
+        'franka_gripper/' + name: (action, read_fields, result, feedback, _fill_fields)
+        for name, action, result, feedback in (
+            ('Move', MoveAction, MoveResult, MoveFeedback),
+            ('Grasp', GraspAction, GraspResult, GraspFeedback),
+            ('Homing', HomingAction, HomingResult, HomingFeedback),
+            ('Stop', StopAction, StopResult, StopFeedback),
+        )
+    }
     return {
+        **franka,
         'control_msgs/FollowJointTrajectory': (
             FollowJointTrajectoryAction,
             read_follow_joint_trajectory_goal,
@@ -141,11 +192,6 @@ def _actions() -> Dict[str, Tuple[Any, Callable[[Any], Any], type, type, Fill]]:
 
 def read_gripper_command_goal(goal: Any) -> Dict[str, Any]:
     return dict(command=dict(position=goal.command.position, max_effort=goal.command.max_effort))
-
-
-def _fill_fields(msg: Any, fields: Fields) -> None:
-    for key, value in fields.items():
-        setattr(msg, key, value)
 
 
 def _services() -> Dict[str, Tuple[Any, Callable[[Any], Fields]]]:

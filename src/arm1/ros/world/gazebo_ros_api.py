@@ -18,10 +18,12 @@ from ...description.names import shown
 from ...description.resource_paths import ResourcePaths, gazebo_paths
 from ...description.sdf_model import SdfModelError, model_dir_finder
 from ...description.sdf_to_urdf import ModelSpawn, sdf_spawn
+from ...sim.franka_hw_sim import FrankaHWSim, FrankaHWSimError
 from ...sim.model_state import WORLD_NAMES, State, compose, frame_state
 from ...sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
 from ..common.packages import find_package, gazebo_exports
 from ..control.controller_manager_services import ControllerManagerServices
+from ..control.node_handle import RosNodeHandle
 from ..plugins.camera_plugin import GazeboRosCamera
 from ..plugins.depth_camera_plugin import GazeboRosDepthCamera
 from ..plugins.sensor_plugins import attach_sensor_plugins
@@ -164,10 +166,20 @@ class GazeboRosApi:
             # What DefaultRobotHWSim reads from the parameter server: joint limits over the
             # URDF's, and the hardware's own PIDs for position/velocity joints.
             ns = model.namespace.rstrip('/')
-            limits = rospy.get_param(ns + '/joint_limits', {})
-            model.hw.set_joint_limits(limits if isinstance(limits, dict) else {})
-            gains = rospy.get_param(ns + '/gazebo_ros_control/pid_gains', {})
-            model.hw.set_pid_gains(gains if isinstance(gains, dict) else {})
+            if isinstance(model.hw, FrankaHWSim):
+                # franka_hw_sim reads its parameters (arm_id, motion_generators, ...) in
+                # initSim through the robot namespace's node handle.
+                nh = RosNodeHandle(model.namespace)
+                model.plugins.append(nh)
+                try:
+                    model.hw.init_sim(nh, model.namespace)
+                except FrankaHWSimError as exc:
+                    raise SpawnError('franka_gazebo/FrankaHWSim: %s' % exc)
+            else:
+                limits = rospy.get_param(ns + '/joint_limits', {})
+                model.hw.set_joint_limits(limits if isinstance(limits, dict) else {})
+                gains = rospy.get_param(ns + '/gazebo_ros_control/pid_gains', {})
+                model.hw.set_pid_gains(gains if isinstance(gains, dict) else {})
             services = ControllerManagerServices(model.hw, model.namespace)
             model.controller_manager = services.manager
             model.plugins.append(services)
