@@ -106,7 +106,8 @@ class FakeRobot:
         self.state = {i: (0.0, 0.0) for i in self.joint_index.values()}
         self.applied: List[Tuple[List[int], List[float]]] = []  # per write
         self.motors: List[Tuple[List[int], List[float], List[float]]] = []  # velocity motors
-        self.placed: List[Tuple[List[int], List[float]]] = []  # set_positions, per write
+        self.placed: List[Tuple[List[int], List[float]]] = []  # move_positions, per write
+        self.position_forces: List[List[float]] = []  # move_positions' max forces, per write
 
     def indices(self, names: Sequence[str]) -> List[int]:
         return [self.joint_index[n] for n in names]
@@ -122,8 +123,15 @@ class FakeRobot:
     ) -> None:
         self.motors.append((list(indices), list(velocities), list(max_forces)))
 
-    def set_positions(self, indices: Sequence[int], positions: Sequence[float]) -> None:
+    def move_positions(
+        self,
+        indices: Sequence[int],
+        positions: Sequence[float],
+        max_forces: Sequence[float],
+        dt: float,
+    ) -> None:
         self.placed.append((list(indices), list(positions)))
+        self.position_forces.append(list(max_forces))
 
     def set(self, name: str, position: float, velocity: float = 0.0) -> None:
         self.state[self.joint_index[name]] = (position, velocity)

@@ -7,6 +7,8 @@ import pybullet as p
 from . import mimic
 
 IDENTITY = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+# How near its last target (m or rad) a position-driven joint counts as having reached it.
+REACHED = 1e-6
 
 
 class RobotLoadError(ValueError):
@@ -90,6 +92,7 @@ class Robot:
         if options is not None:
             self._apply_link_options(options, self_collide)
         self.mimics = []  # physics.mimic.MimicJoint, one per follower
+        self._position_targets = {}  # move_positions' last target by joint index
 
     def _apply_link_options(self, options, self_collide):
         cid = self.client
@@ -185,16 +188,44 @@ class Robot:
             physicsClientId=self.client,
         )
 
-    def set_positions(self, indices, positions):
-        """Put joints there, at rest, for the next step (Gazebo's Joint::SetPosition)."""
+    def move_positions(self, indices, positions, max_forces, dt):
+        """Reach ``positions`` at the end of the next step (as Gazebo's Joint::SetPosition
+        does) by moving there, so that contacts see the motion and friction carries what the
+        links hold: a velocity motor at (target - position) / dt, capped at ``max_forces``
+        (what the joint pushes an obstacle with). A joint that reached its last target moves
+        freely: its velocity is set to that too, so its inertia costs no step; one held back
+        (blocked, or its force too small) gets the motor alone, not a kick into the obstacle."""
         if not indices:
             return
-        p.resetJointStatesMultiDof(
+        cid = self.client
+        states = p.getJointStates(self.body, indices, physicsClientId=cid)
+        velocities, free, free_pos, free_vel = [], [], [], []
+        targets = self._position_targets
+        for i, target, state in zip(indices, positions, states):
+            position = state[0]
+            velocity = (target - position) / dt
+            velocities.append(velocity)
+            last = targets.get(i)
+            if last is None or abs(position - last) <= REACHED:
+                free.append(i)
+                free_pos.append([position])
+                free_vel.append([velocity])
+            targets[i] = target
+        if free:
+            p.resetJointStatesMultiDof(
+                self.body,
+                free,
+                targetValues=free_pos,
+                targetVelocities=free_vel,
+                physicsClientId=cid,
+            )
+        p.setJointMotorControlArray(
             self.body,
             indices,
-            targetValues=[[v] for v in positions],
-            targetVelocities=[[0.0]] * len(indices),
-            physicsClientId=self.client,
+            p.VELOCITY_CONTROL,
+            targetVelocities=velocities,
+            forces=max_forces,
+            physicsClientId=cid,
         )
 
     def set_joint_positions(self, positions):

@@ -6,8 +6,10 @@ transmission's hardware interface says (default_robot_hw_sim.cpp's writeSim):
 
 - EffortJointInterface: the saturated effort.
 - PositionJointInterface: the command, clamped to the position limits and to a
-  max_velocity step from the previous one; without pid gains the joint is set there
-  (Gazebo's SetPosition, a teleport), with them a PID turns the error into effort.
+  max_velocity step from the previous one; without pid gains the joint reaches it in one
+  step as with Gazebo's SetPosition, but by moving there (physics.robot.move_positions: a
+  velocity motor capped at the effort limit), so that friction carries what it holds; with
+  them a PID turns the error into effort.
 - VelocityJointInterface: the command, clamped to +-max_velocity; without pid gains a
   velocity motor capped at the effort limit (Gazebo's SetParam("vel")), with them a PID.
 
@@ -65,8 +67,15 @@ class SimulatedJoints(Protocol):
         """Velocity motors that last until changed (max force 0 switches one off)."""
         ...
 
-    def set_positions(self, indices: Sequence[int], positions: Sequence[float]) -> None:
-        """Put the joints there, at rest, for the next step."""
+    def move_positions(
+        self,
+        indices: Sequence[int],
+        positions: Sequence[float],
+        max_forces: Sequence[float],
+        dt: float,
+    ) -> None:
+        """Reach the positions at the end of the next step, moving there (contacts see the
+        motion) with at most ``max_forces``."""
         ...
 
 
@@ -319,6 +328,7 @@ class DefaultRobotHWSim:
             for d in self._teleported + self._motored
         }
         self._motor_forces = [motor_force[d.index] for d in self._motored]
+        self._position_forces = [motor_force[d.index] for d in self._teleported]
         # Gazebo gives a set joint's motor fmax = the effort limit (a brake between teleports);
         # joints driven by effort must have theirs off, or it would fight the effort.
         indices = [d.index for d in self._drives if d.handle.interface != EFFORT_JOINT_INTERFACE]
@@ -407,7 +417,9 @@ class DefaultRobotHWSim:
             for d in self._teleported:
                 d.handle.command = cmd = d.saturate_position(dt)
                 positions.append(cmd)
-            self.robot.set_positions([d.index for d in self._teleported], positions)
+            self.robot.move_positions(
+                [d.index for d in self._teleported], positions, self._position_forces, dt
+            )
         if self._motored:
             velocities = []
             for d in self._motored:

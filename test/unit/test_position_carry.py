@@ -1,0 +1,127 @@
+"""Position-interface joints without pid_gains reach their command in one step, as Gazebo's
+SetPosition does, but by moving there (physics.robot.Robot.move_positions): a box held
+between two position-driven fingers by friction alone rises with a position-driven lift.
+Real pybullet, the gripper driven through DefaultRobotHWSim by position controllers."""
+
+import pytest
+from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, transmission
+
+from arm1.control.controller_manager import ControllerManager
+from arm1.control.switching import switch_while_updating
+from arm1.description.sdf_world import read_world
+from arm1.sim.simulation import Simulation
+
+POS = 'hardware_interface/PositionJointInterface'
+LIFT_TOP = 0.12  # the lift's travel, m
+
+
+def prismatic(name, parent, xyz, axis, lower, upper, effort):
+    return """
+  <joint name="%s" type="prismatic"><parent link="%s"/><child link="%s_link"/>
+    <origin xyz="%s"/><axis xyz="%s"/>
+    <limit lower="%g" upper="%g" effort="%g" velocity="0.5"/></joint>""" % (
+        name,
+        parent,
+        name,
+        xyz,
+        axis,
+        lower,
+        upper,
+        effort,
+    )
+
+
+# A palm on a vertical lift, two fingers 8 cm apart sliding toward each other (closed at
+# 0.03 each: inner faces 2 cm apart), 10 N each; the 4 cm box between them on the ground.
+GRIPPER = (
+    '<robot name="carrier"><link name="world"/>'
+    + box_link('base', '0.05 0.05 0.02', 1.0)
+    + box_link('lift_link', '0.06 0.12 0.02', 0.3)
+    + box_link('left_link', '0.04 0.02 0.08', 0.05, xyz='0 0 -0.04')
+    + box_link('right_link', '0.04 0.02 0.08', 0.05, xyz='0 0 -0.04')
+    + '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/>'
+    '<origin xyz="0.5 0 0.5"/></joint>'
+    + prismatic('lift', 'base', '0 0 -0.38', '0 0 1', 0, LIFT_TOP, 50)
+    + prismatic('left', 'lift_link', '0 0.05 -0.01', '0 -1 0', 0, 0.03, 10)
+    + prismatic('right', 'lift_link', '0 -0.05 -0.01', '0 1 0', 0, 0.03, 10)
+    + ''.join(transmission(j, POS) for j in ('lift', 'left', 'right'))
+    + control_plugin('/carrier')
+    + '</robot>'
+)
+BOX = '<robot name="box">%s</robot>' % box_link('box', '0.04 0.04 0.04', 0.05)
+
+CONTROLLERS = {
+    '%s_controller' % j: {'type': 'position_controllers/JointPositionController', 'joint': j}
+    for j in ('lift', 'left', 'right')
+}
+
+
+@pytest.fixture
+def sim():
+    s = Simulation(read_world(WORLD_FILE))
+    yield s
+    s.close()
+
+
+def run(sim, seconds):
+    for _ in range(int(round(seconds / sim.period))):
+        sim.step()
+
+
+def test_a_box_held_by_position_driven_fingers_rises_with_a_position_driven_lift(sim):
+    ros = FakeRos({'carrier': CONTROLLERS})
+    model = sim.spawn_urdf(
+        'carrier',
+        GRIPPER,
+        controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+    )
+    box = sim.spawn_urdf('box', BOX, position=(0.5, 0, 0.0205))
+    names = sorted(CONTROLLERS)
+    for n in names:
+        model.controller_manager.load_controller(n)
+    ok, _ = switch_while_updating(model.controller_manager, names, [], sim.step, 2, poll=0.0005)
+    assert ok
+    run(sim, 0.3)
+    ros.publish('/carrier/left_controller/command', 0.03)  # closing past the box's faces
+    ros.publish('/carrier/right_controller/command', 0.03)
+    run(sim, 0.5)
+    left = model.robot.read(model.robot.indices(['left']))[0][0]
+    assert left == pytest.approx(0.02, abs=2e-3)  # stopped by the box, not put through it
+    start = box.robot.link_pose('box')[0][2]
+    lift0 = model.robot.link_pose('lift_link')[0][2]
+    ros.publish('/carrier/lift_controller/command', LIFT_TOP)
+    handle, lift = model.hw.handles['lift'], model.robot.indices(['lift'])
+    worst = 0.0
+    for _ in range(500):
+        sim.step()  # each step reaches the command written before it, box and all
+        worst = max(worst, abs(model.robot.read(lift)[0][0] - handle.command))
+    assert worst < 1e-6
+    lift1 = model.robot.link_pose('lift_link')[0][2]
+    risen = box.robot.link_pose('box')[0][2] - start
+    assert lift1 - lift0 == pytest.approx(LIFT_TOP, abs=1e-3)  # 0.5 m/s: there in 0.24 s
+    assert risen == pytest.approx(LIFT_TOP, abs=2e-3)  # carried, not left on the ground
+    held = box.robot.link_pose('box')[0][2]
+    run(sim, 1.0)
+    assert box.robot.link_pose('box')[0][2] == pytest.approx(held, abs=1e-3)  # no slip
+
+
+def test_a_position_joint_pushes_with_at_most_its_effort_limit():
+    """The force the motor may use is the URDF effort limit (none: a stiff 1e6)."""
+    from conftest import FakeRobot
+
+    from arm1.description.urdf_model import parse_urdf
+    from arm1.sim.robot_hw_sim import UNLIMITED_MOTOR_FORCE, DefaultRobotHWSim
+
+    urdf = GRIPPER.replace('effort="10"', 'effort="0"', 1)  # the left finger: no limit
+    model = parse_urdf(urdf)
+    robot = FakeRobot(list(model.joints))
+    hw = DefaultRobotHWSim(model, robot, 0.001)
+    hw.read()
+    hw.write()
+    (indices, _), forces = robot.placed[-1], robot.position_forces[-1]
+    names = {i: n for n, i in robot.joint_index.items()}
+    assert {names[i]: f for i, f in zip(indices, forces)} == {
+        'left': UNLIMITED_MOTOR_FORCE,
+        'lift': 50.0,
+        'right': 10.0,
+    }
