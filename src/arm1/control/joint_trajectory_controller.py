@@ -2,9 +2,12 @@
 
 Trajectories arrive on the ``command`` topic and the ``follow_joint_trajectory`` action
 (any thread); ``update`` runs on the physics thread. One lock guards the trajectory, the
-active goal and the time data. Goal handles are told their fate from the callbacks under
-that lock (actionlib's own lock is already held there, re-entrantly), but from ``update``
-only after it is released, so the two locks are never taken in the other order.
+active goal and the time data; ``update`` needs it every step, so a new trajectory is
+validated and its segments built outside it (from a snapshot of the time data, as
+upstream builds from its realtime buffer) and only swapped in under it. A second lock lets
+one trajectory be built at a time. Goal handles are told their fate from the callbacks
+under the lock (actionlib calls them without its own lock, as its C++ server does), but
+from ``update`` only after it is released.
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ from __future__ import annotations
 import logging
 import math
 import threading
-from typing import Any, ClassVar, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, ClassVar, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple
 
 from .angles import shortest_angular_distance
 from .controller import Controller, ControllerError, require_param
@@ -29,6 +32,7 @@ from .trajectory import (
     State,
     Tolerance,
     Tolerances,
+    find_segment,
     hold_segment,
     sample,
     wrap_offset,
@@ -73,6 +77,16 @@ def _float(value: Any, what: str, ns: str) -> float:
     return f
 
 
+class _Now(NamedTuple):
+    """The time data and trajectory a new trajectory is built against (taken under the lock)."""
+
+    time_ns: int
+    period_ns: int
+    uptime: float
+    trajectory: List[JointTrajectory]
+    generation: int  # starting() counts up: a build across a restart is stale
+
+
 class JointTrajectoryController(Controller):
     type_name = 'effort_controllers/JointTrajectoryController'
     interface = EFFORT_JOINT_INTERFACE
@@ -94,6 +108,8 @@ class JointTrajectoryController(Controller):
         self.stop_trajectory_duration = 0.0
         self.allow_partial = False
         self._lock = threading.Lock()
+        self._build_lock = threading.Lock()  # one new trajectory built at a time
+        self._generation = 0
         self.trajectory: List[JointTrajectory] = []
         self._active: Optional[GoalHandle] = None
         self._done: List[bool] = []
@@ -188,6 +204,7 @@ class JointTrajectoryController(Controller):
     def starting(self, time_ns: int) -> None:
         with self._lock:
             self._time_ns, self._period_ns, self.uptime = time_ns, 0, 0.0
+            self._generation += 1
             self._last_state_pub = self._last_feedback = 0.0
             self.trajectory = []  # desired = measured on start, not a previous run's
             self.trajectory = [[self._hold(i)] for i in range(len(self.joints))]
@@ -221,24 +238,29 @@ class JointTrajectoryController(Controller):
     def on_command(self, msg: Fields) -> None:
         """The ``command`` topic: errors are logged, an accepted one preempts the goal."""
         preempted = None
-        with self._lock:
-            if not self.running:
+        with self._build_lock:
+            now = self._now()
+            if now is None:
                 log.error("%s: Can't accept new commands. Controller is not running.", self.name)
                 return
             try:
-                self._take(msg, None, None)
+                built = self._build(msg, None, None, now)
             except TrajectoryError as exc:
                 log.error('%s: %s', self.name, exc)
                 return
-            preempted, self._active = self._active, None
+            with self._lock:
+                if not self._commit(built, None, None, now):
+                    log.error('%s: controller stopped or restarted: command dropped', self.name)
+                    return
+                preempted, self._active = self._active, None
         if preempted is not None:  # outside the lock: this thread holds no actionlib lock
             preempted.cancel(dict(error_code=SUCCESSFUL, error_string=''))
 
     def on_goal(self, gh: GoalHandle) -> None:
         """A FollowJointTrajectory goal: accepted (preempting the active one) or rejected."""
-        with self._lock:
-            goal = gh.goal
-            if not self.running:
+        with self._build_lock:
+            now = self._now()
+            if now is None:
                 gh.reject(
                     dict(
                         error_code=INVALID_GOAL,
@@ -247,19 +269,55 @@ class JointTrajectoryController(Controller):
                 )
                 return
             try:
+                goal = gh.goal
                 traj = goal.get('trajectory') or {}
                 self._check_joints(list(traj.get('joint_names') or []))
                 tolerances = self._goal_tolerances(goal)
-                self._take(traj, gh, tolerances)
+                built = self._build(traj, gh, tolerances, now)
             except TrajectoryError as exc:
                 log.error('%s: rejecting goal: %s', self.name, exc)
                 gh.reject(dict(error_code=exc.code, error_string=str(exc)))
                 return
-            previous, self._active = self._active, gh
-            self._done = [False] * len(self.joints)
-            if previous is not None:
-                previous.cancel(dict(error_code=SUCCESSFUL, error_string=''))
-            gh.accept()
+            with self._lock:
+                if not self._commit(built, gh, tolerances, now):
+                    gh.reject(
+                        dict(
+                            error_code=INVALID_GOAL,
+                            error_string='The controller stopped or restarted while the goal '
+                            'was being taken.',
+                        )
+                    )
+                    return
+                previous, self._active = self._active, gh
+                self._done = [False] * len(self.joints)
+                if previous is not None:
+                    previous.cancel(dict(error_code=SUCCESSFUL, error_string=''))
+                gh.accept()
+
+    def _now(self) -> Optional[_Now]:
+        with self._lock:
+            if not self.running:
+                return None
+            return _Now(
+                self._time_ns, self._period_ns, self.uptime, self.trajectory, self._generation
+            )
+
+    def _commit(
+        self,
+        built: Optional[List[JointTrajectory]],
+        gh: Optional[GoalHandle],
+        tolerances: Optional[List[Tolerances]],
+        now: _Now,
+    ) -> bool:
+        """Swap in a built trajectory (None: hold from now on; lock held); False when the
+        controller stopped or restarted since ``now``."""
+        if not self.running or self._generation != now.generation:
+            return False
+        if built is None:
+            tol = tolerances or self.default_tolerances
+            built = [[self._hold(i, gh, tol[i])] for i in range(len(self.joints))]
+        self.trajectory = built
+        return True
 
     def on_cancel(self, gh: GoalHandle) -> None:
         """Cancelling the active goal holds the arm (PREEMPTED); any other: nothing."""
@@ -332,16 +390,20 @@ class JointTrajectoryController(Controller):
                 t.goal_time = 0.0
         return out
 
-    def _take(
-        self, msg: Fields, gh: Optional[GoalHandle], tolerances: Optional[List[Tolerances]]
-    ) -> None:
-        """Validate ``msg`` and merge it into the current trajectory (lock held); raises
-        TrajectoryError and leaves the trajectory untouched when it cannot be taken."""
+    def _build(
+        self,
+        msg: Fields,
+        gh: Optional[GoalHandle],
+        tolerances: Optional[List[Tolerances]],
+        now: _Now,
+    ) -> Optional[List[JointTrajectory]]:
+        """Validate ``msg`` and merge it into the trajectory of ``now`` (no lock held: this is
+        the long part for a long trajectory). None for an empty trajectory (hold); raises
+        TrajectoryError when it cannot be taken."""
         points: List[Mapping[str, Any]] = list(msg.get('points') or [])
         tol = tolerances or self.default_tolerances
         if not points:  # an empty trajectory means: hold
-            self.trajectory = [[self._hold(i, gh, tol[i])] for i in range(len(self.joints))]
-            return
+            return None
         times = [int(p.get('time_from_start', 0)) for p in points]
         if any(b <= a for a, b in zip(times, times[1:])):
             raise TrajectoryError(
@@ -376,8 +438,8 @@ class JointTrajectoryController(Controller):
                             'Point %d: %s of joint %s is %r.' % (k, field, names[j], v)
                         )
         # Times in uptime: the next update happens at uptime + period, ROS time time + period.
-        next_ros = self._time_ns + self._period_ns
-        next_up = self.uptime + self._period_ns * NS
+        next_ros = now.time_ns + now.period_ns
+        next_up = now.uptime + now.period_ns * NS
         stamp = int(msg.get('stamp', 0))
         start_up = next_up + ((stamp - next_ros) * NS if stamp else 0.0)
         first = next((k for k, t in enumerate(times) if start_up + t * NS > next_up), None)
@@ -395,13 +457,13 @@ class JointTrajectoryController(Controller):
                 first,
                 len(points),
             )
-        new: List[JointTrajectory] = [list(t) for t in self.trajectory]
+        new: List[JointTrajectory] = [list(t) for t in now.trajectory]
         bridge_start = max(start_up, next_up)
         for j, name in enumerate(names):
             i = self.joint_names.index(name)
-            cur = self.trajectory[i]
-            k0 = _index(cur, next_up)
-            k1 = _index(cur, start_up)
+            cur = now.trajectory[i]
+            k0 = max(find_segment(cur, next_up), 0)
+            k1 = max(find_segment(cur, start_up), 0)
             kept = cur[k0 : max(k0, k1) + 1]
             _, (p, v, a) = sample(kept, bridge_start)
             states = [_state(pt, j) for pt in points[first:]]
@@ -418,7 +480,7 @@ class JointTrajectoryController(Controller):
                 joint_traj.append(seg)
                 t_prev, s_prev = t, s
             new[i] = joint_traj
-        self.trajectory = new
+        return new
 
     # -- the control cycle (physics thread) ------------------------------------------------
     def update(self, time_ns: int, period_ns: int) -> None:
@@ -505,7 +567,10 @@ class JointTrajectoryController(Controller):
         """A joint the goal does not move (a partial goal) counts as done."""
         if self._done[i]:
             return True
-        return not any(s.goal is not None and s.goal.id == active.id for s in self.trajectory[i])
+        # A goal's segments end every trajectory it moves: the last one tells (a scan of a
+        # 100 000-segment trajectory each step would not do).
+        last = self.trajectory[i][-1].goal
+        return last is None or last.id != active.id
 
     def _state_fields(
         self,
@@ -553,13 +618,6 @@ class JointTrajectoryController(Controller):
                 out['velocity'].append(v)
                 out['acceleration'].append(a)
             return out
-
-
-def _index(traj: JointTrajectory, t: float) -> int:
-    for k in range(len(traj) - 1, -1, -1):
-        if traj[k].start <= t:
-            return k
-    return 0
 
 
 def _state(point: Mapping[str, Any], j: int) -> State:

@@ -10,6 +10,7 @@ position at rest, after it its end position at rest.
 from __future__ import annotations
 
 import math
+from bisect import bisect_right
 from dataclasses import dataclass, field
 from typing import Any, List, Optional, Sequence, Tuple
 
@@ -132,13 +133,15 @@ JointTrajectory = List[Segment]  # one joint's segments, in time order
 
 def find_segment(traj: JointTrajectory, t: float) -> int:
     """Index of the segment active at ``t``: the last one starting at or before it (the
-    first one before the trajectory starts); -1 for an empty trajectory."""
+    first one before the trajectory starts); -1 for an empty trajectory. A binary search
+    (upstream's std::upper_bound): a 100 000-point trajectory costs ~17 comparisons a step."""
     if not traj:
         return -1
-    for k in range(len(traj) - 1, -1, -1):
-        if traj[k].start <= t:
-            return k
-    return 0
+    return max(bisect_right(traj, t, key=_start) - 1, 0)
+
+
+def _start(segment: Segment) -> float:
+    return segment.start
 
 
 def sample(traj: JointTrajectory, t: float) -> Tuple[int, Tuple[float, float, float]]:
