@@ -7,8 +7,9 @@ import logging
 import pybullet as p
 import pytest
 
-from arm1.description.gazebo_tags import KD_DEFAULT, prepare_body
+from arm1.description.gazebo_tags import prepare_body
 from arm1.description.sdf_world import WorldConfig
+from arm1.description.surface import KD_DEFAULT
 from arm1.description.urdf_model import parse_urdf
 from arm1.sim.simulation import Simulation
 
@@ -40,17 +41,18 @@ def dynamics(robot, link):
     return p.getDynamicsInfo(robot.body, robot.link_index[link], physicsClientId=robot.client)
 
 
-def test_mu1_and_kp_kd_become_lateral_friction_and_contact_stiffness(sim):
+def test_mu1_and_kp_kd_become_the_surface_and_contact_stiffness(sim):
     tags = '<gazebo reference="body"><mu1>0.7</mu1><mu2>0.7</mu2><kp>5e4</kp></gazebo>'
     robot = sim.spawn_urdf('b', box_robot('b', tags)).robot
     info = dynamics(robot, 'body')
-    assert info[1] == pytest.approx(0.7)  # lateral friction
+    # touching nothing, a link has sqrt(mu): two such surfaces make mu (physics/surface_combiner)
+    assert info[1] == pytest.approx(0.7**0.5)  # lateral friction
     assert info[9] == pytest.approx(5e4) and info[8] == pytest.approx(KD_DEFAULT)
 
 
-def test_untagged_link_keeps_pybullets_contact(sim):
+def test_untagged_link_has_gazebos_default_mu_of_1(sim):
     robot = sim.spawn_urdf('b', box_robot('b')).robot
-    assert dynamics(robot, 'body')[1] == pytest.approx(0.5)  # pybullet's default
+    assert dynamics(robot, 'body')[1] == pytest.approx(1.0)  # not pybullet's default 0.5
 
 
 def test_lumped_links_tags_move_to_the_parent_but_the_parents_own_win(sim):
@@ -65,7 +67,7 @@ def test_lumped_links_tags_move_to_the_parent_but_the_parents_own_win(sim):
     )
     robot = sim.spawn_urdf('b', box_robot('b', tags, extra)).robot
     info = dynamics(robot, 'body')
-    assert info[1] == pytest.approx(0.3) and info[9] == pytest.approx(1e5)
+    assert info[1] == pytest.approx(0.3**0.5) and info[9] == pytest.approx(1e5)
     assert info[8] == pytest.approx(10)
 
 
@@ -81,7 +83,7 @@ def test_unsupported_tags_are_named_once_at_spawn(caplog):
     assert len(text) == 3  # mu2, maxVel, minDepth: one each; material is not physics
     assert any('mu2' in t and 'body' in t for t in text)
     assert any('maxVel' in t for t in text) and any('minDepth' in t for t in text)
-    assert options.dynamics['body']['lateralFriction'] == pytest.approx(0.2)
+    assert options.surfaces['body'].friction == pytest.approx(0.2)
 
 
 def test_turn_gravity_off_lets_a_link_float_while_another_falls(sim):

@@ -3,13 +3,15 @@ for ODE: fixed joints lumped (lumping), and the per-link ``<gazebo reference>`` 
 turned into what World.load_robot applies (BodyOptions).
 
 Per-link tags, as sdformat reads them into every collision of the link:
-``mu1``/``mu2`` -> pybullet's lateral friction (isotropic: mu1; a different mu2 is warned),
-``kp``/``kd`` -> contact stiffness/damping (SDF's defaults 1e12 and 1 fill in the other),
+``mu1``/``mu2``/``kp``/``kd`` (and bounce, from an SDF model) -> the link's
+surface.Surface, SDF's defaults where a tag is missing (an untagged link has mu 1, as in
+Gazebo); the physics layer combines two touching links' friction as ODE does (the smaller).
 ``selfCollide`` -> self-collision of that link with the model's other links (a pair collides
 when either link says so, never across a joint), ``turnGravityOff`` or ``<gravity>false`` ->
-the link's weight cancelled each step. ``maxVel``, ``minDepth``, ``fdir1``, ``dampingFactor``
-and the ODE joint tags have no pybullet counterpart: each is named once in a warning at
-spawn. A lumped link's tags move to the link it was merged into; that link's own win.
+the link's weight cancelled each step. ``maxVel``, ``minDepth``, ``fdir1``, a ``mu2`` other
+than ``mu1``, ``dampingFactor`` and the ODE joint tags have no pybullet counterpart: each is
+named once in a warning at spawn. A lumped link's tags move to the link it was merged into;
+that link's own win.
 
 Joint ``<dynamics damping friction>`` need nothing here: pybullet reads both from the URDF,
 applies damping as a viscous joint torque as Gazebo does, and Robot turns friction into the
@@ -19,24 +21,19 @@ joint's velocity motor at rest with that force (Gazebo's fmax with vel 0).
 from __future__ import annotations
 
 import logging
-import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from typing import Dict, List, Tuple
 
 from .lumping import TRUE_WORDS, Lumped, Pose, lump_fixed_joints, warn_moving_massless
+from .surface import NOT_APPLIED, Surface, SurfaceError, surface_from_tags
 from .urdf_model import RobotModel, UrdfError
 
 log = logging.getLogger('arm1.description')
 
-KP_DEFAULT = 1e12  # SDF <surface><contact><ode><kp>
-KD_DEFAULT = 1.0  # SDF <surface><contact><ode><kd>
-
-# Tags Gazebo reads that pybullet has no per-link or per-joint setting for.
+# Tags Gazebo reads that pybullet has no per-link or per-joint setting for (the surface's
+# are surface.NOT_APPLIED).
 UNSUPPORTED = {
-    'maxVel': 'ODE max correcting velocity',
-    'minDepth': 'ODE contact min depth',
-    'fdir1': 'friction direction (pybullet friction is isotropic)',
     'dampingFactor': 'link velocity decay',
     'stopCfm': 'joint limit cfm',
     'stopErp': 'joint limit erp',
@@ -54,20 +51,12 @@ class BodyOptions:
 
     # lumped link -> (link it lives on, pose of its frame in that link's frame)
     frames: Dict[str, Tuple[str, Pose]] = field(default_factory=dict)
-    # link -> pybullet changeDynamics keyword arguments
+    # link -> pybullet changeDynamics keyword arguments (contact stiffness and damping)
     dynamics: Dict[str, Dict[str, float]] = field(default_factory=dict)
+    # every link's contact surface (friction and bounce: the world combines pairs as ODE)
+    surfaces: Dict[str, Surface] = field(default_factory=dict)
     self_collide: List[str] = field(default_factory=list)  # links with selfCollide true
     no_gravity: List[str] = field(default_factory=list)  # links whose weight is cancelled
-
-
-def _number(text: str, where: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not math.isfinite(value):
-        raise UrdfError('%s: %r is not a finite number' % (where, text))
-    return value
 
 
 def effective_tags(refs: Dict[str, Dict[str, str]], lumped: Lumped, link: str) -> Dict[str, str]:
@@ -89,25 +78,15 @@ def link_options(
     # link it was merged into, whose name would not lead them to the bad one.
     for name, tags in refs.items():
         if name in lumped.frames:
-            for tag in ('mu1', 'mu2', 'kp', 'kd'):
-                if tag in tags:
-                    _number(tags[tag], "<gazebo reference='%s'> <%s>" % (name, tag))
+            _surface(tags, "<gazebo reference='%s'>" % name)
     for link in links:
         tags = effective_tags(refs, lumped, link)
-        where = "<gazebo reference='%s'>" % link
-        dyn: Dict[str, float] = {}
-        mu1, mu2 = tags.get('mu1'), tags.get('mu2')
-        if mu1 is not None or mu2 is not None:
-            mu = _number(mu1 if mu1 is not None else mu2 or '', where + ' mu1/mu2')
-            dyn['lateralFriction'] = abs(mu)
-            if mu1 is not None and mu2 is not None and _number(mu2, where + ' <mu2>') != mu:
-                unsupported.setdefault('mu2 (different from mu1)', []).append(link)
-        if 'kp' in tags or 'kd' in tags:
-            kp = _number(tags['kp'], where + ' <kp>') if 'kp' in tags else KP_DEFAULT
-            kd = _number(tags['kd'], where + ' <kd>') if 'kd' in tags else KD_DEFAULT
-            dyn['contactStiffness'], dyn['contactDamping'] = kp, kd
-        if dyn:
-            options.dynamics[link] = dyn
+        surface, skipped = _surface(tags, "<gazebo reference='%s'>" % link)
+        options.surfaces[link] = surface
+        for what in skipped:
+            unsupported.setdefault(what, []).append(link)
+        if surface.kp is not None and surface.kd is not None:
+            options.dynamics[link] = {'contactStiffness': surface.kp, 'contactDamping': surface.kd}
         if tags.get('selfCollide', '').strip().lower() in TRUE_WORDS:
             options.self_collide.append(link)
         if _gravity_off(tags):
@@ -120,8 +99,9 @@ def link_options(
         if name in links or name in lumped.frames:
             continue
         for tag in tags:
-            if tag in UNSUPPORTED:
-                unsupported.setdefault('%s (%s)' % (tag, UNSUPPORTED[tag]), []).append(name)
+            if tag in UNSUPPORTED or tag in NOT_APPLIED:
+                why = UNSUPPORTED.get(tag) or NOT_APPLIED[tag]
+                unsupported.setdefault('%s (%s)' % (tag, why), []).append(name)
     for what, names in unsupported.items():
         log.warning(
             "model '%s': <gazebo> tag %s of %s is not applied: pybullet has no such setting",
@@ -130,6 +110,13 @@ def link_options(
             ', '.join(sorted(set(names))),
         )
     return options
+
+
+def _surface(tags: Dict[str, str], where: str) -> Tuple[Surface, List[str]]:
+    try:
+        return surface_from_tags(tags, where)
+    except SurfaceError as exc:
+        raise UrdfError(str(exc)) from None
 
 
 def _gravity_off(tags: Dict[str, str]) -> bool:

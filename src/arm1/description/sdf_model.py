@@ -22,6 +22,7 @@ from . import safe_xml
 from .limits import LimitError, Limits
 from .names import IllegalName, check_name, shown
 from .pose_math import multiply, quat_from_rpy, rotate
+from .surface import SurfaceError, sdf_surface_tags
 
 # Elements a model may hold per link and joint the limits allow (as urdf_model's budget).
 ELEMENTS_PER_PART = 100
@@ -105,6 +106,8 @@ class Link:
     collisions: List[Geometry] = field(default_factory=list)
     visuals: List[Geometry] = field(default_factory=list)
     extras: List[ET.Element] = field(default_factory=list)  # <sensor>s, for <gazebo reference>
+    # its collisions' <surface> as <gazebo reference> tags (surface.SDF_TO_TAG)
+    surface: Dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -400,6 +403,26 @@ def _joint(
     return joint, ''
 
 
+def _link_surface(link: ET.Element, name: str, warnings: List[str]) -> Dict[str, str]:
+    """The link's contact surface: pybullet has one per link, ODE one per collision. The
+    first collision's is kept and a link whose collisions differ is warned about."""
+    said: List[Tuple[str, Dict[str, str]]] = []
+    for c in link.findall('collision'):
+        where = 'link %s collision %s <surface>' % (shown(name), shown(c.get('name', '')))
+        try:
+            said.append((c.get('name', ''), sdf_surface_tags(c.find('surface'), where)))
+        except SurfaceError as exc:
+            raise SdfModelError(str(exc)) from None
+    if not said:
+        return {}
+    if any(tags != said[0][1] for _, tags in said[1:]):
+        warnings.append(
+            'link %s: its collisions have different <surface>s; pybullet has one per link: '
+            'collision %s\'s is used' % (shown(name), shown(said[0][0]))
+        )
+    return said[0][1]
+
+
 def _check_name(name: str, kind: str, limits: Limits) -> None:
     try:
         check_name(name, kind, limits.name_length)
@@ -478,6 +501,7 @@ def parse_model(
                     geometry.color = _color(g)
                 out.append(geometry)
         link.extras = e.findall('sensor')
+        link.surface = _link_surface(e, n, warnings)
         links[n] = link
     joints: List[Joint] = []
     for e in joint_elements:

@@ -84,8 +84,8 @@ def _z_to(n: Sequence[float]) -> Tuple[float, float, float, float]:
 def to_urdf(model: SdfModel, name: Optional[str] = None) -> str:
     """URDF text of the model's tree, named ``name`` (default: the model's).
 
-    The URDF root link's frame is the model frame; links' ``<sensor>``s
-    and ``<plugin>``s go into ``<gazebo>`` blocks as Gazebo's URDF reader takes them.
+    The URDF root link's frame is the model frame; links' ``<sensor>``s, ``<surface>``
+    values and ``<plugin>``s go into ``<gazebo>`` blocks as Gazebo's URDF reader takes them.
     """
     robot = ET.Element('robot', name=name or model.name)
     frames: Dict[str, Tf] = {model.root: IDENTITY}  # each URDF link frame, in the model
@@ -129,8 +129,10 @@ def to_urdf(model: SdfModel, name: Optional[str] = None) -> str:
         if j.damping or j.friction:
             ET.SubElement(element, 'dynamics', damping=_num(j.damping), friction=_num(j.friction))
     for link in model.links.values():
-        if link.extras:
+        if link.extras or link.surface:
             gazebo = ET.SubElement(robot, 'gazebo', reference=link.name)
+            for tag, text in link.surface.items():  # as sdformat's URDF reader names them
+                ET.SubElement(gazebo, tag).text = text
             gazebo.extend(link.extras)
     for j in model.joints:
         if j.type == 'fixed' and j.parent != 'world':

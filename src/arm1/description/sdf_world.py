@@ -18,6 +18,7 @@ from typing import Callable, Dict, Optional
 from . import safe_xml, sdf_model, sdf_to_urdf
 from .limits import LimitError, Limits
 from .resource_paths import ResourceNotFound
+from .surface import Surface, SurfaceError, sdf_surface_tags, surface_from_tags
 
 # model://NAME -> the SDF file (ResourcePaths.find_model); raises ResourceNotFound.
 FindModel = Callable[[str], str]
@@ -44,6 +45,7 @@ class StaticModel:
     name: str
     pose: tuple
     shapes: list
+    surface: Surface = field(default_factory=Surface)  # its first collision's <surface>
 
 
 @dataclass
@@ -113,7 +115,14 @@ def _scenery(model: ET.Element) -> Optional[StaticModel]:
             shapes.append(shape)
     if not shapes or model.findall('joint'):
         return None
-    return StaticModel(name, _pose(model, 'model %s' % name), shapes)
+    first = model.find('link/collision')
+    where = 'model %s <surface>' % name
+    try:
+        tags = sdf_surface_tags(first.find('surface') if first is not None else None, where)
+        surface, _ = surface_from_tags(tags, where)  # a plane has no direction to apply fdir1 to
+    except SurfaceError as exc:
+        raise SdfError(str(exc)) from None
+    return StaticModel(name, _pose(model, 'model %s' % name), shapes, surface)
 
 
 def _bool(text: Optional[str]) -> bool:

@@ -5,7 +5,9 @@ import os
 
 import pybullet as p
 
+from ..description.surface import Surface
 from .robot import Robot
+from .surface_combiner import SurfaceCombiner
 
 log = logging.getLogger('arm1.physics')
 
@@ -38,6 +40,8 @@ class World:
         if self.gui:
             p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=cid)
             p.resetDebugVisualizerCamera(0.35, 45, -30, (0, 0, 0.05), physicsClientId=cid)
+        # Friction and bounce as ODE combines two surfaces (the smaller), not pybullet's product
+        self.surfaces = SurfaceCombiner(cid)
         self.scenery = [self._build(m) for m in config.models]
         self.robots = []
 
@@ -77,16 +81,23 @@ class World:
                 model.pose[:3], quat, s.pose[:3], p.getQuaternionFromEuler(s.pose[3:])
             )
             bodies.append(p.createMultiBody(0, col, vis, pos, orn, physicsClientId=cid))
+            surface = getattr(model, 'surface', None) or Surface()
+            self.surfaces.add(bodies[-1], -1, surface.friction, surface.restitution)
         return bodies
 
     def load_robot(self, urdf_path, position, orientation, fixed_base, options=None):
         """``options``: description.gazebo_tags.BodyOptions of the URDF, None for none."""
         robot = Robot(self.client, urdf_path, position, orientation, fixed_base, options)
         self.robots.append(robot)
+        surfaces = options.surfaces if options is not None else {}
+        for name, index in robot.link_index.items():
+            surface = surfaces.get(name) or Surface()
+            self.surfaces.add(robot.body, index, surface.friction, surface.restitution)
         return robot
 
     def remove_robot(self, robot):
         self.robots.remove(robot)
+        self.surfaces.forget(robot.body)
         robot.remove()
 
     def step(self):
@@ -98,6 +109,7 @@ class World:
                 if gravity is None:
                     gravity = _gravity(self.client)
                 _cancel_weight(robot, gravity)
+        self.surfaces.update()
         p.stepSimulation(physicsClientId=self.client)
         for robot in self.robots:
             if robot.mimics:
