@@ -36,10 +36,15 @@ def rotate(q: Sequence[float], v: Sequence[float]) -> Vec:
 
 
 def normalized(q: Sequence[float]) -> Quat:
-    n = math.sqrt(sum(c * c for c in q))
-    if n == 0:
-        return (0.0, 0.0, 0.0, 1.0)  # as upstream: all-zero becomes identity
-    return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
+    """``q`` scaled to unit length. Scaled by its largest component first, so that neither
+    huge (1e200: the squares overflow to inf) nor tiny components (the squares underflow to
+    0) turn into NaN or identity; all-zero becomes identity, as upstream."""
+    big = max(abs(c) for c in q)
+    if big == 0:
+        return (0.0, 0.0, 0.0, 1.0)
+    s = [c / big for c in q]
+    n = math.sqrt(sum(c * c for c in s))
+    return (s[0] / n, s[1] / n, s[2] / n, s[3] / n)
 
 
 def quat_from_rpy(roll: float, pitch: float, yaw: float) -> Quat:

@@ -93,9 +93,16 @@ class DiffDrive(SimSensor):
 
     # ------------------------------------------------------------------ the ROS side's calls
     def set_command(self, linear_x: float, angular_z: float) -> None:
-        """cmdVelCallback: kept until the next command (upstream has no timeout)."""
+        """cmdVelCallback: kept until the next command (upstream has no timeout). A
+        non-finite one raises ValueError and the last command stays: one NaN would make
+        the wheel speeds, and through them pose and odometry, NaN for good."""
+        command = (float(linear_x), float(angular_z))
+        if not all(math.isfinite(v) for v in command):
+            raise ValueError(
+                'linear.x %r, angular.z %r: not finite; keeping the last command' % command
+            )
         with self._lock:
-            self._command = (float(linear_x), float(angular_z))
+            self._command = command
 
     def reset(self) -> None:
         """Reset(): odometry back to zero, no command."""

@@ -6,10 +6,14 @@ import os
 import pybullet as p
 
 from ..description.surface import Surface
-from .robot import Robot
+from .robot import Robot, RobotLoadError
 from .surface_combiner import SurfaceCombiner
 
 log = logging.getLogger('arm1.physics')
+
+# pybullet's shared-memory state holds at most this many joints of one body: with more,
+# getBasePositionAndOrientation and the joint states fail (measured, pybullet 3.2).
+MAX_BODY_JOINTS = 127
 
 
 def connect(gui):
@@ -87,7 +91,23 @@ class World:
 
     def load_robot(self, urdf_path, position, orientation, fixed_base, options=None):
         """``options``: description.gazebo_tags.BodyOptions of the URDF, None for none."""
-        robot = Robot(self.client, urdf_path, position, orientation, fixed_base, options)
+        before = _bodies(self.client)
+        try:
+            robot = Robot(self.client, urdf_path, position, orientation, fixed_base, options)
+        except BaseException as exc:  # whole or not at all: no half-built body stays
+            built = _bodies(self.client) - before
+            joints = max((p.getNumJoints(b, physicsClientId=self.client) for b in built), default=0)
+            for body in built:
+                p.removeBody(body, physicsClientId=self.client)
+            if isinstance(exc, p.error):
+                if joints > MAX_BODY_JOINTS:
+                    raise RobotLoadError(
+                        'pybullet cannot simulate a body of %d joints: it reports no state for '
+                        'more than %d joints in one body (fixed joints count unless lumped)'
+                        % (joints, MAX_BODY_JOINTS)
+                    )
+                raise RobotLoadError('pybullet could not build the robot (%s)' % exc)
+            raise
         self.robots.append(robot)
         surfaces = options.surfaces if options is not None else {}
         for name, index in robot.link_index.items():
@@ -122,6 +142,13 @@ class World:
     def close(self):
         if p.isConnected(self.client):
             p.disconnect(self.client)
+
+
+def _bodies(client):
+    return {
+        p.getBodyUniqueId(i, physicsClientId=client)
+        for i in range(p.getNumBodies(physicsClientId=client))
+    }
 
 
 def _gravity(client):

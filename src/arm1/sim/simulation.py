@@ -19,6 +19,7 @@ from ..description.camera_sensor import CameraSensor, camera_sensors
 from ..description.gazebo_tags import BodyOptions, prepare_body
 from ..description.limits import LimitError
 from ..description.names import IllegalName, check_name, shown
+from ..description.pose_math import normalized
 from ..description.sdf_world import WorldConfig
 from ..description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
 from ..physics.contact import set_collision_namer
@@ -173,7 +174,14 @@ class Simulation:
             name,
             description,
             sensors,
-            (path, tuple(position), tuple(orientation), description.root_link == 'world', options),
+            # normalised here: pybullet's own normalisation overflows on 1e200 components
+            (
+                path,
+                tuple(position),
+                normalized(orientation),
+                description.root_link == 'world',
+                options,
+            ),
         )
 
     def spawn_prepared(

@@ -72,7 +72,12 @@ class DiffDrivePlugin:
         return resolved
 
     def _command(self, msg: Twist) -> None:
-        self.drive.set_command(msg.linear.x, msg.angular.z)
+        try:
+            self.drive.set_command(msg.linear.x, msg.angular.z)
+        except ValueError as exc:  # a flood of them: one warning per 5 s
+            rospy.logwarn_throttle(
+                5.0, 'diff drive: refusing %s: %s' % (self.drive.command_topic, exc)
+            )
 
     def _deliver(self, stamp_ns: int, r: DiffDriveReading) -> None:
         """Physics thread: rospy's queued publishers write from threads of their own."""
