@@ -3,8 +3,9 @@
 import time
 
 from arm1.tuning import cli
+from arm1.tuning.evaluator import RAY_LOCAL, Evaluator
 from arm1.tuning.inputs import Setup
-from arm1.tuning.search import RAY_LOCAL, Evaluator, GainSearch
+from arm1.tuning.search import GainSearch
 
 
 def search(make, evaluator, tuned, seed):

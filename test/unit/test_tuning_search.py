@@ -12,11 +12,12 @@ import yaml
 from conftest import REPO_ROOT
 
 from arm1.tuning import cli
+from arm1.tuning.evaluator import Evaluator
 from arm1.tuning.inputs import Setup, parse_pose
 from arm1.tuning.metrics import Criteria, StepMetrics
 from arm1.tuning.report import verdict
 from arm1.tuning.save import with_gains
-from arm1.tuning.search import UNSTEADY, Evaluator, GainSearch, SearchSpace, score
+from arm1.tuning.search import UNSTEADY, GainSearch, SearchSpace, score
 from arm1.tuning.session import measure_all
 from arm1.tuning.steps import StepRig
 

@@ -16,9 +16,9 @@ import sys
 from typing import IO, List, Optional
 
 from .bag_report import run_bag
+from .evaluator import EvaluatorError
 from .inputs import Setup
 from .metrics import Criteria
-from .search import EvaluatorError
 from .session import tune
 from .steps import ARM1_POSES, ARM1_START, Protocol
 

@@ -8,10 +8,11 @@ import sys
 import time
 from typing import IO, Any, Dict, List, Optional, Tuple
 
+from .evaluator import Evaluator
 from .inputs import Setup
 from .report import RunsByPose, SearchProgress, failing, intro, report, snippet
 from .save import save_params, with_gains
-from .search import Evaluator, GainSearch, SearchSpace
+from .search import GainSearch, SearchSpace
 from .steps import Protocol, StepRig
 
 Gains = Dict[str, Dict[str, Any]]  # joint -> its gains
