@@ -38,6 +38,7 @@ GAINS = {
         'position': {'gains': {j: {'p': kp, 'd': kd, 'i': 0.0} for j, (kp, kd) in zip(ARM, PD)}},
     },
     'arm_id': 'toy',
+    'm_ee': 0.76,
 }
 
 
@@ -147,6 +148,7 @@ def test_effort_controller_switch_moves_the_arm_and_gravity_stays_compensated(ri
     last = states[-1]
     assert last['q'] == pytest.approx(positions(model, ARM), abs=0.01)
     assert last['robot_mode'] == ROBOT_MODE_MOVE
+    assert last['m_ee'] == 0.76 and last['m_total'] == 0.76
     joints = ros.messages('/franka_state_controller/joint_states')[-1]
     assert joints['name'] == ARM
     assert ros.messages('/franka_state_controller/F_ext')[-1]['frame_id'] == 'toy_K'

@@ -258,6 +258,13 @@ class FrankaHWSim:
         s.m_total = s.m_ee + s.m_load
         f_t_ee = np.array(s.F_T_NE).reshape(4, 4).T @ np.array(s.NE_T_EE).reshape(4, 4).T
         s.F_T_EE = [float(v) for v in f_t_ee.T.reshape(16)]
+        log.info(
+            "FrankaHWSim: arm_id '%s', end effector %g kg, load %g kg%s",
+            self.arm_id,
+            s.m_ee,
+            s.m_load,
+            ' (a Franka Hand found)' if hand else '',
+        )
         self._initialized_pub = model_nh.advertise('initialized', 'std_msgs/Bool', 1)
         self._initialized_pub.publish({'data': False})
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import Any, Callable, Dict, List, Optional
 
+import rosgraph.masterapi
 import rospy
 
 from ...control.interfaces import Fields, Params
@@ -49,6 +50,16 @@ class _Publisher:
             self.pub.publish(self.msg)
 
 
+def _namespace_params(namespace: str) -> Any:
+    """The parameters under ``namespace``, from the master. Not rospy.get_param: its cache
+    answers a namespace holding a cached parameter with the cached ones alone (the root '/'
+    with rosout's rosout_disable_topics_generation only)."""
+    try:
+        return rosgraph.masterapi.Master(rospy.get_name()).getParam(namespace)
+    except rosgraph.masterapi.Error:  # not set
+        return {}
+
+
 class RosNodeHandle:
     # Called after each message a subscription of a node handle delivers (rospy's thread):
     # the world loop's Pacer.wake, so that a command does not wait out a batched sleep.
@@ -56,7 +67,7 @@ class RosNodeHandle:
 
     def __init__(self, namespace: str) -> None:
         self.namespace = namespace.rstrip('/') or '/'
-        params = rospy.get_param(self.namespace, {})
+        params = _namespace_params(self.namespace)
         self.params: Params = params if isinstance(params, dict) else {}
         self._handles: List[Any] = []  # whatever has unregister(): publishers, subscribers, servers
 
