@@ -13,9 +13,9 @@ W, H = 640, 480
 def cost_ms(data):
     times = []
     for _ in range(21):
-        t = time.perf_counter()
+        t = time.process_time()
         is_uniform(data, W, H, W * 3)
-        times.append(time.perf_counter() - t)
+        times.append(time.process_time() - t)
     return 1000.0 * statistics.median(times)
 
 
@@ -26,4 +26,4 @@ def test_the_check_of_a_640x480_frame_takes_well_under_a_few_ms():
     for data, uniform in ((sky, True), (bytes(last_differs), False)):
         assert is_uniform(data, W, H, W * 3) is uniform
         assert is_uniform(memoryview(data), W, H, W * 3) is uniform  # as the world hands it
-        assert cost_ms(data) < 2.0  # ~0.05 ms here; generous for a loaded machine
+        assert cost_ms(data) < 2.0  # ~0.05 ms here; CPU time: another process's load adds none

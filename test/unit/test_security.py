@@ -23,11 +23,12 @@ LAUGHS = (
 
 
 def refused(fn, *args):
-    """The UrdfError ``fn(*args)`` raises and the wall time it took."""
-    start = time.monotonic()
+    """The UrdfError ``fn(*args)`` raises and the CPU time it took (the work a request costs;
+    wall time would also count what other processes of a busy machine took)."""
+    start = time.process_time()
     with pytest.raises(UrdfError) as exc:
         fn(*args)
-    return str(exc.value), time.monotonic() - start
+    return str(exc.value), time.process_time() - start
 
 
 def max_rss_mb():
@@ -77,10 +78,10 @@ def test_element_flood_stops_at_the_budget_in_bounded_memory():
     limits = Limits(links_per_model=10, joints_per_model=10)  # 2000 elements allowed
     doc = '<robot name="r">' + '<gazebo/>' * 1_000_000 + '</robot>'
     before = max_rss_mb()
-    start = time.monotonic()
+    start = time.process_time()
     with pytest.raises(LimitError) as exc:
         parse_urdf(doc, limits)
-    assert time.monotonic() - start < 1.0
+    assert time.process_time() - start < 1.0
     assert max_rss_mb() - before < 50
     assert 'more than 2000 XML elements' in str(exc.value)
     assert '~limits/links_per_model' in str(exc.value)
@@ -91,10 +92,10 @@ def test_default_limits_bound_the_parse_of_the_largest_document():
     limits = Limits()
     budget = 100 * (limits.links_per_model + limits.joints_per_model)
     doc = '<robot name="r">' + '<g/>' * (budget + 10) + '</robot>'
-    start = time.monotonic()
+    start = time.process_time()
     with pytest.raises(LimitError, match='more than %d XML elements' % budget):
         parse_urdf(doc, limits)
-    assert time.monotonic() - start < 10.0
+    assert time.process_time() - start < 10.0
 
 
 def test_description_bytes_counts_utf8_bytes_not_characters():
@@ -180,10 +181,10 @@ def test_obj_with_a_line_longer_than_a_chunk(tmp_path):
 def test_obj_counting_stops_past_the_limit(tmp_path):
     path = tmp_path / 'big.obj'
     path.write_bytes(b'f 1 2 3\n' * 2_000_000)
-    start = time.monotonic()
+    start = time.process_time()
     count = count_triangles(str(path), stop_above=100_000)
     assert 100_000 < count < 2_000_000
-    assert time.monotonic() - start < 2.0
+    assert time.process_time() - start < 2.0
 
 
 DAE = """<?xml version="1.0" encoding="utf-8"?>
@@ -239,10 +240,10 @@ def test_huge_mesh_is_refused_by_size_before_it_is_read(tmp_path):
     pkg.mkdir()
     with open(str(pkg / 'huge.stl'), 'wb') as f:
         f.truncate(2 * 1024**3)  # sparse: 2 GiB on paper, nothing on disk
-    start = time.monotonic()
+    start = time.process_time()
     with pytest.raises(LimitError) as exc:
         resolve_mesh_uris(robot_with_mesh('package://pkg/huge.stl'), finder(pkg))
-    assert time.monotonic() - start < 0.5
+    assert time.process_time() - start < 0.5
     assert 'mesh bytes is 2147483648, over the limit of 268435456' in str(exc.value)
     assert '~limits/mesh_bytes' in str(exc.value)
 
