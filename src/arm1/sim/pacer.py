@@ -26,6 +26,10 @@ class Pacer:
     """
 
     MAX_LAG = 0.1  # further behind than this, catch up no more: start a new schedule
+    # Longer waits are napped, so that wake() ends them: a slow schedule (set_physics_
+    # properties' max_update_rate 0.1 is a 10 s period) must not hold a hand-over call
+    # (a service answer, the next rate change) for its whole period.
+    MAX_SLEEP = 0.05
 
     def __init__(self, period, clock=time.perf_counter, sleep=time.sleep, nap=None):
         """``nap(seconds)``: an interruptible sleep, True when woken (default: by wake())."""
@@ -34,6 +38,7 @@ class Pacer:
         self._woken = threading.Lock()
         self._woken.acquire()  # held while nobody has called wake()
         self.nap = nap or self._nap
+        self._batched = False
         self.restart()
 
     def restart(self):
@@ -41,7 +46,8 @@ class Pacer:
         self._count = 0
 
     def wake(self):
-        """Any thread: end a batched sleep now (the next step still waits for its time)."""
+        """Any thread: end a batched or long sleep now (the next step still waits for its
+        time)."""
         try:
             self._woken.release()
         except RuntimeError:  # already woken, not yet seen
@@ -51,23 +57,35 @@ class Pacer:
         return self._woken.acquire(timeout=seconds)
 
     def wait(self):
-        """Call once per step, after it: sleeps until the next step is due."""
+        """Call once per step, after it: sleeps until the next step is due. True then; False
+        when woken before (a call to serve): serve it, then call ``resume`` until True."""
         self._count += 1
+        self._batched = self.steps_per_wake > 1
+        return self.resume()
+
+    def resume(self):
+        """Go on waiting for the step ``wait`` waits for (or the schedule since restart)."""
         if self.period <= 0:
-            return
+            return True
         due = self._start + self._count * self.period
-        now = self.clock()
-        ahead = due - now
-        if ahead > 0:
-            if self.steps_per_wake > 1:
-                if not self.nap(ahead + (self.steps_per_wake - 1) * self.period):
-                    return  # slept until the batch's last step was due: run them all now
-                ahead = due - self.clock()  # woken: the next step at its own time
-                if ahead <= 0:
-                    return
+        ahead = due - self.clock()
+        if ahead <= 0:
+            if ahead < -self.MAX_LAG:
+                self.restart()
+            return True
+        woken = False
+        if self._batched:
+            self._batched = False
+            if not self.nap(ahead + (self.steps_per_wake - 1) * self.period):
+                return True  # slept until the batch's last step was due: run them all now
+            woken = True  # the next step at its own time
+            ahead = due - self.clock()
+            if ahead <= 0:
+                return True
+        if ahead <= self.MAX_SLEEP:
             self.sleep(ahead)
-        elif ahead < -self.MAX_LAG:
-            self.restart()
+            return True
+        return not woken and not self.nap(ahead)
 
 
 class RealTimeFactorMeter:

@@ -51,4 +51,8 @@ class WorldLoop:
                 continue
             sim.step()
             clock.after_step(sim.time_ns)
-            pacer.wait()
+            due = pacer.wait()
+            # woken in a long wait (a slow max_update_rate): serve the call, then wait on
+            while not (due or self.paused or rospy.core.is_shutdown_requested()):
+                calls.run_pending()
+                due = pacer.resume()
