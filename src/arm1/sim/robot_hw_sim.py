@@ -38,6 +38,7 @@ from ..control.hardware_interface import (
     saturation_bounds,
 )
 from ..control.pid import Pid, PidConfigError
+from .limit_chatter import LimitChatterWatch, chatter_message
 
 if TYPE_CHECKING:
     from ..description.urdf_model import RobotModel
@@ -313,6 +314,16 @@ class DefaultRobotHWSim:
         ]
         if len(self._plain_efforts) < len(self._torque):
             self._plain_efforts = []
+        # Effort joints whose velocity limit the saturation enforces: watched for its trap.
+        watched = [
+            d
+            for d in self._torque
+            if d.handle.interface == EFFORT_JOINT_INTERFACE and math.isfinite(d.bounds[3])
+        ]
+        self._chatter_handles = [d.handle for d in watched]
+        self._chatter = (
+            LimitChatterWatch([(d.handle.name, d.bounds[3]) for d in watched]) if watched else None
+        )
         self._teleported = [
             d
             for d in self._drives
@@ -366,6 +377,9 @@ class DefaultRobotHWSim:
             self._write_torques()
         if self._teleported or self._motored:
             self._write_set_joints()
+        if self._chatter is not None:
+            for name, limit in self._chatter.observe([h.velocity for h in self._chatter_handles]):
+                log.warning(chatter_message(name, limit))
 
     def _saturated_efforts(self) -> List[float]:
         """saturate_effort written out inline for each joint of _plain_efforts (the usual

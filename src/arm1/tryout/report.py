@@ -5,6 +5,7 @@ from typing import Any, Dict, List
 from ..control.joint_trajectory_controller import ERROR_CODE_NAMES
 
 MAX_WARNINGS_SHOWN = 25
+CHATTER_WORDS = 'velocity-limit chatter'  # sim/limit_chatter.py's warning
 
 
 def verdict(rep: Dict[str, Any]) -> Dict[str, Any]:
@@ -32,6 +33,9 @@ def verdict(rep: Dict[str, Any]) -> Dict[str, Any]:
             why.append('%s: %s' % (m.get('controller'), _motion_line(m)))
     if up.get('up') and managers and not motion:
         why.append('no running position or trajectory controller to move a joint with')
+    for w in rep.get('warnings') or []:  # the world's diagnosis of the limit trap
+        if CHATTER_WORDS in str(w.get('message', '')):
+            why.append(str(w['message']))
     return {'ok': not why, 'problems': why}
 
 
