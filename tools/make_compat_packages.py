@@ -105,6 +105,8 @@ MSG_PACKAGES = {
     # franka_ros's (noetic-devel) messages, for franka_gazebo's FrankaHWSim stand-in
     'franka_msgs': ('0.10.1', ['std_msgs', 'actionlib_msgs']),
     'franka_gripper': ('0.10.1', ['actionlib_msgs']),
+    # gazebo-pkgs' (master) grasp event, which arm1's grasp plugin publishes
+    'gazebo_grasp_plugin_ros': ('0.0.1', []),
 }
 DEFINITIONS = os.path.join(ARM1, 'tools', 'compat_msgs')
 KINDS = (('msg', 'add_message_files'), ('srv', 'add_service_files'), ('action', 'add_action_files'))

@@ -28,6 +28,11 @@ def set_collision_namer(client: int, namer: CollisionNamer) -> None:
     _namers[client] = namer
 
 
+def collision_name(client: int, body: int, link: int) -> str:
+    """Gazebo's scoped collision name of a pybullet body's link, as the world names it."""
+    return _namers.get(client, _unnamed)(body, link)
+
+
 def _unnamed(body: int, link: int) -> str:
     return 'body%d::link%d' % (body, link)
 

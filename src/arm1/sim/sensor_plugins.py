@@ -26,7 +26,7 @@ from ..description.urdf_model import RobotModel
 from ..physics import diff_drive, laser
 from ..physics.robot import Robot
 from ..physics.sim_sensor import SimSensor
-from . import state_sensors
+from . import grasp_plugin, state_sensors
 
 log = logging.getLogger('arm1.physics')
 
@@ -46,6 +46,7 @@ MODEL_PLUGINS['libgazebo_ros_imu.so'] = state_sensors.build_imu_plugin
 MODEL_PLUGINS['libgazebo_ros_p3d.so'] = state_sensors.build_p3d
 MODEL_PLUGINS['libgazebo_ros_ft_sensor.so'] = state_sensors.build_ft_sensor
 MODEL_PLUGINS['libgazebo_ros_diff_drive.so'] = diff_drive.build_diff_drive
+MODEL_PLUGINS[grasp_plugin.GRASP_PLUGIN] = grasp_plugin.build_grasp_fix
 
 
 def build_sensors(

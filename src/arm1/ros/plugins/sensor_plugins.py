@@ -10,10 +10,11 @@ import logging
 from typing import Any, Callable, Dict, Optional, Type
 
 from ...physics.diff_drive import DiffDrive
+from ...physics.grasp import GraspFix
 from ...physics.laser import Laser
 from ...physics.sim_sensor import SimSensor
 from ...sim.simulation import Model, Plugin
-from . import diff_drive_plugin, laser_plugin
+from . import diff_drive_plugin, grasp_plugin, laser_plugin
 from . import state_sensor_plugins as state
 
 log = logging.getLogger('rosout')
@@ -28,6 +29,7 @@ ROS_SENSOR_PLUGINS[state.ContactSensor] = state.bumper_publisher
 ROS_SENSOR_PLUGINS[state.ForceTorque] = state.ft_publisher
 ROS_SENSOR_PLUGINS[Laser] = laser_plugin.laser_publisher
 ROS_SENSOR_PLUGINS[DiffDrive] = diff_drive_plugin.diff_drive_plugin
+ROS_SENSOR_PLUGINS[GraspFix] = grasp_plugin.grasp_event_publisher
 
 
 def attach_sensor_plugins(model: Model) -> None:
