@@ -246,3 +246,18 @@ def test_gravity_torques_hold_the_arm_still_in_pybullet(rig):
     assert positions(model, ARM) == pytest.approx(POSE, abs=0.02)
     assert all(math.isfinite(v) for v in hw.state.tau_ext_hat_filtered)
     assert max(abs(v) for v in hw.state.tau_ext_hat_filtered) < 1.0
+
+
+def test_gripper_grasp_closing_on_nothing_holds_at_the_joint_limit(rig):
+    """Closed on nothing, the fingers stop at their limit (where pybullet leaves them
+    jittering step to step) and the grasp of width 0 succeeds, holding."""
+    sim, model, ros = rig
+    cm = model.controller_manager
+    cm.load_controller('franka_gripper')
+    switch_while_updating(cm, ['franka_gripper'], [], sim.step)
+    goal = dict(width=0.0, speed=0.1, force=20.0, epsilon=dict(inner=0.005, outer=0.005))
+    gh = ros.action_servers['/franka_gripper/grasp'].send_goal(goal)
+    run(sim, 1.0)
+    assert gh.status == 'SUCCEEDED' and gh.result['success'] is True
+    assert cm.controller('franka_gripper').mode == 'holding'
+    assert sum(positions(model, FINGERS)) == pytest.approx(0.0, abs=0.002)

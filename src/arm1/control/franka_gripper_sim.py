@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import math
 import threading
+from collections import deque
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Deque, Dict, List, Optional, Tuple
 
 from .controller import Controller, ControllerError
 from .hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
@@ -99,7 +100,8 @@ class FrankaGripperSim(Controller):
         self.config = Config()
         self._lock = threading.Lock()
         self._goal: Optional[_Goal] = None
-        self._resting = 0  # consecutive updates with the fingers (nearly) still
+        # the fingers' summed speed over the last grasp/consecutive_samples updates
+        self._speeds: Deque[float] = deque(maxlen=GRASP_CONSECUTIVE_SAMPLES)
         self._last_publish_ns: Optional[int] = None
 
     def init(self, robot_hw: RobotHW, root_nh: NodeHandle, controller_nh: NodeHandle) -> None:
@@ -121,6 +123,9 @@ class FrankaGripperSim(Controller):
         self.speed_samples = int(
             _number(params, 'grasp/consecutive_samples', GRASP_CONSECUTIVE_SAMPLES, ns)
         )
+        if self.speed_samples < 1:
+            raise ControllerError('%s/grasp/consecutive_samples must be at least 1' % ns)
+        self._speeds = deque(maxlen=self.speed_samples)
         for i in (1, 2):
             gains = params.get('finger%d' % i, {})
             try:
@@ -175,7 +180,7 @@ class FrankaGripperSim(Controller):
                 refused = False
                 previous, self._goal = self._goal, goal
                 self.mode, self.config = state, config
-                self._resting = 0
+                self._speeds.clear()
         if refused:
             gh.abort(_failure("Can't accept new action goals. Controller is not running."))
             return
@@ -342,10 +347,13 @@ class FrankaGripperSim(Controller):
             self.mode, self.config = IDLE, Config(c.width, 0.0, 0.0, c.inner, c.outer)
             return self._settle(width)
         if state in (GRASPING, MOVING):
-            speed = f1.velocity + f2.velocity
-            self._resting = self._resting + 1 if abs(speed) <= self.speed_threshold else 0
-            if self._resting >= self.speed_samples:
-                self._resting = 0
+            # Upstream wants every one of the samples under the threshold; pybullet's joint
+            # limit leaves a finger pressed on it jittering at +-0.008 m/s from one step to
+            # the next, so the samples' mean is held to it instead.
+            self._speeds.append(f1.velocity + f2.velocity)
+            resting = abs(sum(self._speeds)) <= self.speed_threshold * len(self._speeds)
+            if len(self._speeds) >= self.speed_samples and resting:
+                self._speeds.clear()
                 if state == GRASPING:
                     self.mode = HOLDING
                     self.config = Config(width, 0.0, c.force, c.inner, c.outer)
