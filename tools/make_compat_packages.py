@@ -20,6 +20,9 @@ import os
 import stat
 import sys
 
+from compat_gazebo_ros_launch import make_gazebo_ros_launch
+from compat_stand_ins import STAND_INS, make_stand_ins
+
 ARM1 = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 PACKAGE_XML = '''<?xml version="1.0"?>
@@ -51,29 +54,6 @@ WRAPPER = '''#!/bin/sh
 # {doc}
 exec "{arm1}/.ws/venv/bin/python" -c 'import sys; from {module} import main; sys.exit(main())' "$@"
 '''
-
-EMPTY_WORLD = '''<launch>
-  <!-- gazebo_ros/launch/empty_world.launch: the same args, handed to arm1's pybullet world. -->
-{args}
-  <include file="$(find arm1)/launch/empty_world.launch" pass_all_args="true"/>
-</launch>
-'''
-EMPTY_WORLD_ARGS = [
-    ('paused', 'false'),
-    ('use_sim_time', 'true'),
-    ('gui', 'true'),
-    ('headless', 'false'),
-    ('debug', 'false'),
-    ('verbose', 'false'),
-    ('physics', 'ode'),
-    ('world_name', 'worlds/empty.world'),  # upstream's: Gazebo's ground plane and sun
-    ('respawn_gazebo', 'false'),
-    ('output', 'screen'),
-    ('pub_clock_frequency', '100'),
-    ('real_time_factor', ''),
-    ('real_time_update_rate', ''),
-    ('lockstep', 'false'),
-]
 
 PACKAGES = {
     'gazebo_ros': (
@@ -179,25 +159,28 @@ def make_msg_package(dest: str, name: str, version: str, deps: list[str]) -> Non
 def make(dest: str) -> None:
     for name, (version, deps) in MSG_PACKAGES.items():
         make_msg_package(dest, name, version, deps)
+    # gazebo_ros and controller_manager: stand-ins of build-time names too (their exports)
+    make_stand_ins(dest, write, CATKIN_DEPENDS)
     for name, (description, executables) in PACKAGES.items():
         root = os.path.join(dest, name)
         deps = CATKIN_DEPENDS.get(name, [])
-        write(
-            os.path.join(root, 'package.xml'),
-            PACKAGE_XML.format(
-                name=name,
-                description=description,
-                depends=''.join('  <depend>%s</depend>\n' % d for d in deps),
-            ),
-        )
-        write(
-            os.path.join(root, 'CMakeLists.txt'),
-            CMAKELISTS.format(
-                name=name,
-                components=' COMPONENTS ' + ' '.join(deps) if deps else '',
-                exports='CATKIN_DEPENDS ' + ' '.join(deps) if deps else '',
-            ),
-        )
+        if name not in STAND_INS:  # xacro: a run-time name only
+            write(
+                os.path.join(root, 'package.xml'),
+                PACKAGE_XML.format(
+                    name=name,
+                    description=description,
+                    depends=''.join('  <depend>%s</depend>\n' % d for d in deps),
+                ),
+            )
+            write(
+                os.path.join(root, 'CMakeLists.txt'),
+                CMAKELISTS.format(
+                    name=name,
+                    components=' COMPONENTS ' + ' '.join(deps) if deps else '',
+                    exports='CATKIN_DEPENDS ' + ' '.join(deps) if deps else '',
+                ),
+            )
         for exe, module in executables.items():
             # $(find xacro)/xacro: ROS 1 xacro kept its script at the package's top.
             path = (
@@ -210,11 +193,7 @@ def make(dest: str) -> None:
                 ),
                 executable=True,
             )
-    args = '\n'.join('  <arg name="%s" default="%s"/>' % a for a in EMPTY_WORLD_ARGS)
-    write(
-        os.path.join(dest, 'gazebo_ros', 'launch', 'empty_world.launch'),
-        EMPTY_WORLD.format(args=args),
-    )
+    make_gazebo_ros_launch(dest, write)
 
 
 if __name__ == '__main__':

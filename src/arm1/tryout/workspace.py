@@ -12,7 +12,7 @@ import re
 import subprocess
 import time
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Sequence
 
 from arm1.description import safe_xml
 
@@ -129,20 +129,24 @@ def make_workspace(ws: str, packages: List[Package]) -> None:
         os.symlink(os.path.abspath(pkg.path), link)
 
 
-def build(ws: str, packages: List[Package], timeout: float = 1200.0) -> BuildResult:
-    """catkin_make in ws, overlaying arm1's workspace; the log goes to ws/build.log."""
+def build(
+    ws: str, packages: List[Package], timeout: float = 1200.0, blacklist: Sequence[str] = ()
+) -> BuildResult:
+    """catkin_make in ws, overlaying arm1's workspace, leaving out the ``blacklist``ed
+    packages (CATKIN_BLACKLIST_PACKAGES, always given: CMake caches it); the log goes to
+    ws/build.log."""
     make_workspace(ws, packages)
     log = os.path.join(ws, 'build.log')
     script = (
         'set -e; source "$1"; cd "$2"; '
         'catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE="$3" '
-        '-DCATKIN_ENABLE_TESTING=OFF -j2'
+        '-DCATKIN_ENABLE_TESTING=OFF -DCATKIN_BLACKLIST_PACKAGES="$4" -j2'
     )
     start = time.monotonic()
     with open(log, 'w') as out:
         try:
             rc = subprocess.run(
-                ['bash', '-c', script, 'build', UNDERLAY, ws, VENV_PYTHON],
+                ['bash', '-c', script, 'build', UNDERLAY, ws, VENV_PYTHON, ';'.join(blacklist)],
                 stdout=out,
                 stderr=subprocess.STDOUT,
                 timeout=timeout,

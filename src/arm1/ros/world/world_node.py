@@ -25,6 +25,7 @@ from .gazebo_state_api import GazeboStateApi
 from .master_watch import MasterWatch
 from .sim_clock import SimClock
 from .sim_thread import SimThreadCalls
+from .unapplied_options import unapplied_options
 from .world_loop import WorldLoop
 
 
@@ -92,7 +93,30 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
     )
     parser.add_argument('--real-time-factor', type=float, help='overrides the world file')
     parser.add_argument('--real-time-update-rate', type=float, help='overrides the world file')
-    return parser.parse_args(argv)
+    parser.add_argument('-r', '--record', action='store_true', help='accepted, not applied')
+    # gzserver's options taking a value (empty_world.launch's extra_gazebo_args): accepted,
+    # logged as not applied, so their values are not taken for the world file
+    for flags in GZSERVER_VALUE_OPTIONS:
+        parser.add_argument(*flags, dest='gz_' + flags[-1].lstrip('-'), action='append')
+    args, unknown = parser.parse_known_args(argv)
+    for flags in GZSERVER_VALUE_OPTIONS:
+        for value in getattr(args, 'gz_' + flags[-1].lstrip('-')) or []:
+            unknown += [flags[-1], value]
+    args.unknown = unknown
+    return args
+
+
+GZSERVER_VALUE_OPTIONS = (
+    ('-s', '--server-plugin'),
+    ('--seed',),
+    ('--iters',),
+    ('-p', '--play'),
+    ('-o', '--profile'),
+    ('--record_path',),
+    ('--record_period',),
+    ('--record_filter',),
+    ('--record_encoding',),
+)
 
 
 def world_config(args: argparse.Namespace) -> WorldConfig:
@@ -122,6 +146,10 @@ def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
     except (SdfError, LimitError, ResourceNotFound) as exc:
         rospy.logfatal(str(exc))
         sys.exit(1)
+    for note in unapplied_options(
+        args.physics, args.record, args.unknown, rospy.get_param('~', {})
+    ):
+        rospy.loginfo('gzserver: %s', note)
     node = WorldNode(Simulation(config, gui=args.gui), paused=args.paused)
     node.spawn_world_models()
     if config.skipped:
