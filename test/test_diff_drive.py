@@ -7,7 +7,6 @@ or not anyone listens."""
 import math
 import os
 import sys
-import time
 
 import rosgraph
 import rospy
@@ -62,7 +61,7 @@ class DiffDrive(SpawningTestCase):
         spawn_urdf('two_wheels', ROBOT, '/rover', (0, 0, 0.005))
         cls.cmd = rospy.Publisher('/rover/cmd_vel', Twist, queue_size=1)
         assert wait_for(lambda: cls.cmd.get_num_connections() > 0, 10), 'nobody on cmd_vel'
-        time.sleep(0.5)  # let it settle on the ground
+        sim_wait(0.5)  # let it settle on the ground: physics' time, not the machine's
 
     def drive(self, x, z):
         self.cmd.publish(Twist(linear=Vector3(x, 0, 0), angular=Vector3(0, 0, z)))

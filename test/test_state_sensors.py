@@ -5,7 +5,6 @@ stamped in sim time, with the values physics gives, and only once someone subscr
 
 import os
 import sys
-import time
 
 import rosgraph
 import rospy
@@ -17,7 +16,7 @@ from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import Recorder, SpawningTestCase, spawn_urdf, wait_for  # noqa: E402
+from rostest_util import Recorder, SpawningTestCase, sim_wait, spawn_urdf, wait_for  # noqa: E402
 
 G = 9.8
 BASE_MASS, PAYLOAD_MASS = 2.0, 1.0
@@ -106,7 +105,7 @@ class StateSensors(SpawningTestCase):
         # read by p3d, bumper and ft_sensor (tf::resolve), not by the IMU plugins
         rospy.set_param('/rover/tf_prefix', 'rv')
         spawn_urdf('rover', ROVER, '/rover', (0, 0, 0.1))
-        time.sleep(1.0)  # let it settle on the ground
+        sim_wait(1.0)  # let it settle on the ground: physics' time, not the machine's
 
     def test_01_nothing_is_sent_before_anyone_subscribes(self):
         for topic in TOPICS:
