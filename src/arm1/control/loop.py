@@ -48,6 +48,8 @@ class ControlLoop:
 
     def __init__(self, hw: RobotHWSim, manager: ControllerManager, period_ns: int) -> None:
         self.hw, self.manager, self.period_ns = hw, manager, period_ns
+        # Checked once: a runtime Protocol check costs as much as a small controller's update.
+        self._read_at = hw.read_at if isinstance(hw, TimedRobotHWSim) else None
         self.last_update_ns: Optional[int] = None
 
     def update(self, now_ns: int) -> bool:
@@ -61,8 +63,8 @@ class ControlLoop:
         due = elapsed >= self.period_ns
         if due:
             self.last_update_ns = now_ns
-            if isinstance(self.hw, TimedRobotHWSim):
-                self.hw.read_at(now_ns, elapsed)
+            if self._read_at is not None:
+                self._read_at(now_ns, elapsed)
             else:
                 self.hw.read()
             self.manager.update(now_ns, elapsed)

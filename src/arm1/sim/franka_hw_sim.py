@@ -201,7 +201,14 @@ class FrankaHWSim:
         self._by_name = {j.name: j for j in self._joints}
         self.arm = [self._by_name[n] for n in state_joints]
         self._indices = [j.index for j in self._joints]
-        self.dynamics = BodyDynamics(robot, state_joints, self.root_link)
+        try:
+            self.dynamics = BodyDynamics(robot, state_joints, self.root_link)
+        except (KeyError, ValueError) as exc:
+            raise FrankaHWSimError('the FrankaStateInterface joints: %s' % exc)
+        fixed = [j.name for j in self._joints if j.index not in self.dynamics.dofs]
+        if fixed:
+            raise FrankaHWSimError('transmissions name fixed joint(s) %s' % ', '.join(fixed))
+        self._dofs = [self.dynamics.dofs.index(i) for i in self._indices]  # in q_all
         self.q_all, self.dq_all = self.dynamics.state()
         self._model = _Model(self)
         self._links = set(description.links)
@@ -344,13 +351,16 @@ class FrankaHWSim:
         """readSim: joint states, then the robot state (updateRobotState)."""
         dt = max(period_ns, 1) * 1e-9
         self._time_ns = time_ns
-        for j, (pos, vel) in zip(self._joints, self.robot.read(self._indices)):
+        # One read of every degree of freedom serves the handles and the dynamics.
+        self.q_all, self.dq_all = self.dynamics.state()
+        q, dq = self.q_all, self.dq_all
+        for j, k in zip(self._joints, self._dofs):
+            pos, vel = q[k], dq[k]
             acceleration = (vel - j.velocity) / dt if self._initialized else 0.0
             j.jerk = (acceleration - j.acceleration) / dt if self._initialized else 0.0
             j.position, j.velocity, j.acceleration = pos, vel, acceleration
             for h in j.handles.values():
                 h.position, h.velocity, h.effort = pos, vel, j.effort
-        self.q_all, self.dq_all = self.dynamics.state()
         self._update_joint_state(time_ns)
         if self._initialized_pub is not None and (
             self._last_initialized_ns is None
@@ -366,8 +376,8 @@ class FrankaHWSim:
         if self._initialized:
             # What the body needs beyond the torques applied: the world's push (external torque)
             ddq = [0.0] * len(self.q_all)
-            for j in self.arm:
-                ddq[self.dynamics.dofs.index(j.index)] = j.acceleration
+            for j, k in zip(self.arm, self.dynamics.columns):
+                ddq[k] = j.acceleration
             needed = self.dynamics.inverse_dynamics(self.q_all, self.dq_all, ddq)
             a = self.tau_ext_lowpass_filter
             s.tau_ext_hat_filtered = [
