@@ -2,9 +2,11 @@
 
 import argparse
 import sys
+import threading
 
 import rospy
 from controller_manager_msgs.srv import LoadController, SwitchController, UnloadController
+from std_msgs.msg import Bool
 
 STRICT = 2
 
@@ -92,13 +94,43 @@ class Spawner:
             rospy.logwarn('Controller Spawner: controller manager gone: %s', exc)
 
 
+def wait_for_true(topic):
+    """As upstream's --wait-for: until a std_msgs/Bool on ``topic`` says True (franka_gazebo's
+    ``initialized`` says False first); warns once if nothing is heard in 30 s of sim time."""
+    heard = threading.Event()
+    ready = threading.Event()
+
+    def on_message(msg):
+        heard.set()
+        if msg.data:
+            ready.set()
+
+    sub = rospy.Subscriber(topic, Bool, on_message)
+    started = rospy.get_time()
+    warned = False
+    try:
+        while not ready.wait(0.01):
+            if rospy.is_shutdown():
+                return False
+            if not warned and not heard.is_set() and rospy.get_time() - started > 30:
+                warned = True
+                rospy.logwarn(
+                    'Controller Spawner hasn\'t heard anything from its "wait for" topic (%s)',
+                    topic,
+                )
+    finally:
+        sub.unregister()
+    return True
+
+
 def main(argv=None):
     args = parse_args(rospy.myargv(sys.argv if argv is None else argv)[1:])
     rospy.init_node('spawner', anonymous=True)
     spawner = Spawner(args)
     if args.wait_for:
         rospy.loginfo('Controller Spawner: Waiting for topic %s', args.wait_for)
-        rospy.wait_for_message(args.wait_for, rospy.AnyMsg)
+        if not wait_for_true(args.wait_for):
+            return 1
     if not spawner.wait_for_manager():
         return 1
     rospy.on_shutdown(spawner.shutdown)
