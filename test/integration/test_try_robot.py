@@ -55,6 +55,7 @@ def test_builds_unchanged_in_its_own_workspace(run):
     proc, rep, out, before = run
     assert rep['build']['ok'], rep['build']
     assert rep['build']['packages'] == ['mini_arm']
+    assert rep['build']['per_package'] == {'mini_arm': {'built': True}}
     assert os.path.islink(out / 'ws' / 'src' / 'mini_arm')
     assert os.path.exists(out / 'ws' / 'devel' / 'setup.bash')
     assert tree(MINI_ARM) == before, 'the checkout was changed'

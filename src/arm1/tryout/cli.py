@@ -158,12 +158,15 @@ def run(a: argparse.Namespace) -> Dict[str, Any]:
     progress(
         'building %s in %s (catkin_make over arm1)' % (', '.join(p.name for p in packages), ws)
     )
-    built = workspace.build(ws, packages)
+    built, last, per_package = workspace.build_each(ws, packages)
+    # ok: plain catkin_make passed with the packages unchanged (what a user's first try sees)
     rep['build'] = {
         'ok': built.ok,
         'packages': built.packages,
         'seconds': round(built.seconds, 1),
         'log': built.log,
+        'per_package': per_package,
+        'rest_ok': last.ok,
     }
     if built.ok:
         progress('built in %.1f s' % built.seconds)
@@ -171,8 +174,15 @@ def run(a: argparse.Namespace) -> Dict[str, Any]:
     else:
         shutil.copy(built.log, os.path.join(out, 'build.log'))
         rep['build']['log_tail'] = built.log_tail
-        progress('build FAILED (%s); running from the sources instead' % built.log)
-        env = workspace.workspace_env(None, packages)
+        failed = sorted(n for n, v in per_package.items() if not v['built'])
+        if last.ok:
+            # the others built: run from that workspace (its src dir keeps the left-out
+            # packages on ROS_PACKAGE_PATH)
+            progress('build FAILED for %s; the others built without them' % ', '.join(failed))
+            env = workspace.workspace_env(ws, packages)
+        else:
+            progress('build FAILED (%s); running from the sources instead' % built.log)
+            env = workspace.workspace_env(None, packages)
     try:
         rep.update(bringup(a, env, args, out, progress))
     finally:

@@ -91,6 +91,11 @@ def text(rep: Dict[str, Any]) -> str:
         'build      %s in %.1f s: %s'
         % ('ok' if b.get('ok') else 'FAILED', b.get('seconds', 0), ', '.join(b.get('packages', [])))
     )
+    for name, v in sorted((b.get('per_package') or {}).items()):
+        if v.get('built'):
+            add('  %-28s built unchanged' % name)
+        else:
+            add('  %-28s NOT BUILT (%s) %s' % (name, v.get('stage', ''), v.get('error', '')))
     if not b.get('ok') and b.get('log_tail'):
         lines.extend('  | ' + t for t in str(b['log_tail']).splitlines()[-15:])
     up = rep.get('bringup', {})

@@ -9,10 +9,11 @@ underlay.
 
 import os
 import re
+import shutil
 import subprocess
 import time
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from arm1.description import safe_xml
 
@@ -158,6 +159,74 @@ def build(
         tail = ''.join(f.readlines()[-40:])
     ok = rc == 0 and os.path.exists(os.path.join(ws, 'devel', 'setup.bash'))
     return BuildResult(ok, [p.name for p in packages], time.monotonic() - start, log, tail)
+
+
+# catkin_make's log: the package being configured, and make's failed targets
+# (`make[2]: *** [PKG/CMakeFiles/...]`, `make[1]: *** [CMakeFiles/Makefile2:N: PKG/CMakeFiles/...]`)
+ADD_SUBDIRECTORY_RE = re.compile(r'^-- ==> add_subdirectory\((.+?)\)\s*$', re.M)
+MAKE_FAILED_RE = re.compile(r'\*\*\* \[(?:CMakeFiles/Makefile2:\d+: )?([^/\s\]:]+)/CMakeFiles/')
+
+
+def blamed_packages(log: str, names: Sequence[str]) -> Dict[str, Dict[str, str]]:
+    """The packages a failed catkin_make log blames: {name: {stage, error}}, stage 'cmake'
+    (the package configured when CMake first failed) or 'compile' (make's failed targets)."""
+    blamed: Dict[str, Dict[str, str]] = {}
+    cmake_error = log.find('CMake Error')
+    if cmake_error >= 0:
+        configured = ADD_SUBDIRECTORY_RE.findall(log[:cmake_error])
+        name = os.path.basename(configured[-1]) if configured else ''
+        if name in names:
+            blamed[name] = {'stage': 'cmake', 'error': _first_line(log, cmake_error)}
+        return blamed
+    for name in MAKE_FAILED_RE.findall(log):
+        if name in names and name not in blamed:
+            blamed[name] = {'stage': 'compile', 'error': _first_error(log, name)}
+    return blamed
+
+
+def _first_line(log: str, at: int) -> str:
+    """The message of the error starting at ``at``: its line and the next non-empty one."""
+    lines = [t.strip() for t in log[at:].splitlines()[:4] if t.strip()]
+    return ' '.join(lines[:2])[:300]
+
+
+def _first_error(log: str, name: str) -> str:
+    for line in log.splitlines():
+        if ('error:' in line or 'Error' in line) and '/%s/' % name in line:
+            return line.strip()[:300]
+    return 'make failed on %s' % name
+
+
+def build_each(
+    ws: str, packages: List[Package], timeout: float = 1200.0
+) -> Tuple[BuildResult, BuildResult, Dict[str, Dict[str, Any]]]:
+    """Build as a user's plain catkin_make would, then, while it fails, again without the
+    packages the log blames (CATKIN_BLACKLIST_PACKAGES, as arm1's stand-ins advise), to
+    learn package by package what builds unchanged. Returns the first build, the last and
+    {package: {built, stage, error}}; the first build's log is kept as ws/build-first.log."""
+    names = [p.name for p in packages]
+    first = last = build(ws, packages, timeout)
+    if not first.ok:
+        shutil.copy(first.log, os.path.join(ws, 'build-first.log'))
+        first.log = os.path.join(ws, 'build-first.log')
+    verdicts: Dict[str, Dict[str, Any]] = {}
+    blacklist: List[str] = []
+    while not last.ok and len(blacklist) < len(names):
+        with open(last.log, encoding='utf-8', errors='replace') as f:
+            blamed = blamed_packages(f.read(), [n for n in names if n not in blacklist])
+        if not blamed:
+            break
+        for name, why in blamed.items():
+            verdicts[name] = {'built': False, **why}
+        blacklist += sorted(blamed)
+        if len(blacklist) < len(names):
+            last = build(ws, packages, timeout, blacklist)
+    for name in names:
+        if name not in verdicts:
+            verdicts[name] = (
+                {'built': last.ok} if last.ok else {'built': False, 'stage': 'not reached'}
+            )
+    return first, last, verdicts
 
 
 def workspace_env(ws: Optional[str], packages: List[Package]) -> Dict[str, str]:
