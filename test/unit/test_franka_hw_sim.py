@@ -55,6 +55,10 @@ def rig():
             'joint_names': ARM,
         },
         'effort_ctrl': {'type': 'effort_controllers/JointGroupEffortController', 'joints': ARM},
+        'position_ctrl': {
+            'type': 'position_controllers/JointGroupPositionController',
+            'joints': ARM,
+        },
         'franka_gripper': {
             'type': 'franka_gazebo/FrankaGripperSim',
             'arm_id': 'toy',
@@ -261,3 +265,22 @@ def test_gripper_grasp_closing_on_nothing_holds_at_the_joint_limit(rig):
     assert gh.status == 'SUCCEEDED' and gh.result['success'] is True
     assert cm.controller('franka_gripper').mode == 'holding'
     assert sum(positions(model, FINGERS)) == pytest.approx(0.0, abs=0.002)
+
+
+def test_position_commands_go_through_the_motion_generator_pids_and_stopping_holds(rig):
+    """A position controller's commands are the hardware's PID setpoints; once it stops, the
+    arm holds where it was (idle) and the state says IDLE."""
+    sim, model, ros = rig
+    cm = model.controller_manager
+    cm.load_controller('position_ctrl')
+    switch_while_updating(cm, ['position_ctrl'], [], sim.step)
+    target = [0.3, -0.5, 0.2, -2.0, 0.2, 1.8, 0.5]
+    ros.publish('/position_ctrl/command', target)
+    run(sim, 2.0)
+    assert positions(model, ARM) == pytest.approx(target, abs=0.02)
+    assert model.hw.state.q_d == pytest.approx(target)
+    switch_while_updating(cm, [], ['position_ctrl'], sim.step)
+    assert model.hw.state.robot_mode == ROBOT_MODE_IDLE
+    held = positions(model, ARM)
+    run(sim, 1.0)
+    assert positions(model, ARM) == pytest.approx(held, abs=0.01)
