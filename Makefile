@@ -65,6 +65,7 @@ BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/cfg/*.cfg $(ROOT)/env-hooks/*) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
   $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py \
+  $(wildcard $(ROOT)/tools/compat_*.py) \
   $(wildcard $(ROOT)/tools/compat_msgs/*/*/*)
 
 .PHONY: setup venv build demo test test-stress lint bench soak clean link-package
