@@ -1,6 +1,7 @@
 """The build-time stand-ins (tools/compat_stand_ins.py) with real catkin_make, in a throw-away
 workspace overlaying arm1's, on two packages of our own making: one that only names Gazebo,
-gazebo_ros_pkgs and ros_control and builds a roscpp node (it must build unchanged), one
+gazebo_ros_pkgs and ros_control (and the ROS build dependencies make setup installs) and
+builds a roscpp node (it must build unchanged), one
 whose sources include Gazebo's and ros_control's headers (it must stop with our one message
 naming it, and the rest must build once it is blacklisted, as that message says).
 """
@@ -17,7 +18,9 @@ NAMED = (
     'hardware_interface controller_interface transmission_interface joint_limits_interface '
     'realtime_tools control_toolbox forward_command_controller effort_controllers '
     'position_controllers velocity_controllers joint_state_controller joint_trajectory_controller '
-    'gripper_action_controller diff_drive_controller'
+    'gripper_action_controller diff_drive_controller '
+    # Debian's, from make setup's ROBOT_BUILD_DEPENDS
+    'robot_state_publisher rviz tf2_ros tf urdf kdl_parser actionlib'
 ).split()
 
 PACKAGE_XML = '''<?xml version="1.0"?>
