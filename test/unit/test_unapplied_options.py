@@ -31,3 +31,16 @@ def test_each_unapplied_option_is_one_line_naming_it():
     ):
         assert sum(word in n for n in notes) == 1, (word, notes)
     assert '50 Hz' in notes[5]
+
+
+def test_gzserver_command_line_takes_gazebos_options_without_mistaking_their_values():
+    from arm1.ros.world.world_node import parse_args
+
+    args = parse_args(
+        ['-u', '-r', '-e', 'bullet', '--seed', '7', '-s', 'libx.so', '--bogus', 'worlds/x.world']
+    )
+    assert args.world == 'worlds/x.world' and args.paused and args.record
+    assert args.physics == 'bullet'
+    assert args.unknown == ['--bogus', '--server-plugin', 'libx.so', '--seed', '7']
+    plain = parse_args(['worlds/empty.world'])
+    assert plain.unknown == [] and not plain.record and plain.physics == 'ode'
