@@ -56,7 +56,7 @@ APT_PACKAGES := \
   python3-venv python3-pip python3-numpy python3-yaml python3-psutil python3-defusedxml python3-tqdm python3-pil \
   cmake make g++ xvfb \
   rviz joint-state-publisher-gui libgl1-mesa-dri libglx-mesa0 \
-  libegl1 libegl-mesa0 libgl1 libgles2 chromium \
+  libegl1 libegl-mesa0 libgl1 libgles2 chromium python3-websocket \
   $(ROBOT_BUILD_DEPENDS)
 
 # A change to any of these rebuilds the workspace (python modules under

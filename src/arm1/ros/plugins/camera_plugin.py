@@ -12,7 +12,7 @@ from __future__ import annotations
 import collections
 import struct
 import threading
-from typing import Any, Callable, Deque, Tuple
+from typing import Any, Callable, Deque, List, Tuple
 
 import rospy
 from sensor_msgs.msg import CameraInfo, Image
@@ -94,11 +94,14 @@ class GazeboRosCamera:
         self._cond = threading.Condition()
         self._running = True
         self.dropped = 0  # frames the publishing thread was too slow for
+        # In-process viewers (the browser view) of each frame, called on the publishing
+        # thread: they want images as a subscriber does, without a copy through a socket.
+        self.viewers: List[Callable[[int, Pixels], None]] = []
         self._thread = threading.Thread(
             target=self._run, daemon=True, name='camera-%s' % sensor.name
         )
         self._thread.start()
-        camera.wants_image = lambda: self._image_pub.get_num_connections() > 0
+        camera.wants_image = lambda: bool(self.viewers) or self._image_pub.get_num_connections() > 0
         camera.wants_info = lambda: self._info_pub.get_num_connections() > 0
         camera.on_image = self._queue_image
         camera.on_info = self._queue_info
@@ -128,7 +131,12 @@ class GazeboRosCamera:
                 kind, stamp_ns, data = self._pending.popleft()
             try:
                 if kind == 'image':
-                    self.publish_image(stamp_ns, data)
+                    for viewer in list(self.viewers):
+                        viewer(stamp_ns, data)
+                    if self._image_pub.get_num_connections() > 0:
+                        self.publish_image(stamp_ns, data)
+                    else:
+                        self.publish_info(stamp_ns)
                 else:
                     self.publish_info(stamp_ns)
             except rospy.ROSException:  # the topic closed: shut down, or the model deleted
@@ -160,6 +168,7 @@ class GazeboRosCamera:
         cam = self._camera
         cam.on_image = cam.on_info = None
         cam.wants_image = cam.wants_info = lambda: False
+        self.viewers = []
         with self._cond:
             self._running = False
             self._pending.clear()

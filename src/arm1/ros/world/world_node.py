@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import List, Optional, Sequence, Tuple
+from typing import Any, List, Optional, Sequence, Tuple
 
 import rospy
 
@@ -39,6 +39,7 @@ class WorldNode:
         self.loop = WorldLoop(sim, self.calls, clock, paused)
         self.api = GazeboRosApi(sim, self.calls, self.loop)
         self.pacer: Optional[Pacer] = None
+        self.web: Optional[Any] = None  # web_view.WebView with --web
         self.state_api = GazeboStateApi(sim, self.calls, self.loop, self._set_update_rate)
 
     def _set_update_rate(self, rate: float) -> None:
@@ -90,6 +91,20 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
             'physics waits for every camera frame (deterministic; the real-time factor drops '
             'instead of the image rate)'
         ),
+    )
+    parser.add_argument(
+        '--web',
+        action='store_true',
+        help='serve a browser view of the world (docs/web-view.md); its address is printed',
+    )
+    parser.add_argument(
+        '--web-host',
+        default='127.0.0.1',
+        help='interface the browser view listens on (default: loopback only; see the docs\' '
+        'Security section before choosing another)',
+    )
+    parser.add_argument(
+        '--web-port', type=int, default=8080, help='its port (taken: the next free one; 0: any)'
     )
     parser.add_argument('--real-time-factor', type=float, help='overrides the world file')
     parser.add_argument('--real-time-update-rate', type=float, help='overrides the world file')
@@ -164,7 +179,26 @@ def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
         config.real_time_update_rate,
         ' (paused)' if args.paused else '',
     )
+    if args.web:
+        start_web_view(node, args.web_host, args.web_port)
     return node, Pacer(period)
+
+
+def start_web_view(node: WorldNode, host: str, port: int) -> None:
+    """The browser view (imported only when asked: viser is large); its address is printed,
+    logged and left in ``~web_url``."""
+    from .web_view import WebView
+
+    try:
+        node.web = WebView(
+            node.sim, node.calls, node.loop, host, port, node.api._set_paused
+        )  # the pause services' own path
+    except OSError as exc:
+        rospy.logerr('web view: cannot listen on %s port %d: %s', host, port, exc)
+        return
+    rospy.set_param('~web_url', node.web.url)
+    rospy.loginfo('web view: open %s in a browser', node.web.url)
+    print('web view: open %s in a browser' % node.web.url, flush=True)
 
 
 def main(argv: Optional[List[str]] = None) -> None:
@@ -172,4 +206,6 @@ def main(argv: Optional[List[str]] = None) -> None:
     try:
         node.run(pacer)
     finally:
+        if node.web is not None:
+            node.web.close()
         node.sim.close()
