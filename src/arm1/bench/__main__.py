@@ -63,6 +63,7 @@ PLAN = [
     ('seed_goal', 'seed_goal', ['--seconds', '20'], 3, ['--seconds', '3'], 1),
     ('realtime', 'realtime', ['--seconds', '60'], 3, ['--seconds', '4'], 1),
     ('idle_world', 'idle_world', ['--seconds', '20'], 3, None, 0),
+    ('web_view', 'web_view', ['--seconds', '20'], 3, None, 0),
 ]
 SCALING_ARMS = (2, 4, 8, 16)
 NEEDS_MASTER = {'standin', 'latency'}  # they run the world in-process against a shared master

@@ -160,6 +160,44 @@ ROWS += [
     ('laser scan cost (ms per scan, 720 rays)', 'laser', 'scan_ms', '', None, '%.2f'),
     ('  of which the ray cast, masking and noise (ms)', 'laser', 'cast_ms', '', None, '%.2f'),
 ]
+# the browser view (bench/web.py): gazebo.launch web:=true at real time, page closed and open in
+# headless Chromium; then arm1's camera subscribed: images per sim second against its update_rate
+ROWS += [
+    ('browser view: world CPU, no page open (cores)', 'web_view', 'cpu_closed', '', None, '%.3f'),
+    (
+        '  with the page open in headless Chromium (cores)',
+        'web_view',
+        'cpu_added',
+        'added ≤ 0.05',
+        lambda v: v <= 0.05,
+        '%+.3f',
+    ),
+    ('  real-time factor, no page open', 'web_view', 'rtf_closed', '', None, '%.3f'),
+    (
+        '  real-time factor, page open',
+        'web_view',
+        'rtf_open',
+        '1.00 ± 0.01',
+        lambda v: abs(v - 1.0) <= 0.01,
+        '%.3f',
+    ),
+    (
+        'camera 640x480 asked rate (images per sim s)',
+        'web_view',
+        'camera_asked_hz',
+        '',
+        None,
+        '%.1f',
+    ),
+    (
+        '  delivered at real time (images per sim s)',
+        'web_view',
+        'camera_hz',
+        '≥ 29.7',
+        lambda v: v >= 29.7,
+        '%.2f',
+    ),
+]
 # a subscribed depth camera's frame, 640x480, all of it off the physics thread (bench/depth.py)
 ROWS += [
     ('depth camera frame cost (ms)', 'depth_camera', 'frame_ms', '', None, '%.1f'),

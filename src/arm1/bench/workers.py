@@ -19,6 +19,7 @@ from .launched import realtime, seed_goal, startup
 from .render import render
 from .sensors import laser_scan
 from .speed import standin
+from .web import web_view
 
 KINDS: Dict[str, Callable[..., Any]] = {
     'bare': bare,
@@ -32,6 +33,7 @@ KINDS: Dict[str, Callable[..., Any]] = {
     'render': render,
     'laser': laser_scan,
     'depth': depth_frame,
+    'web_view': web_view,
 }
 
 
