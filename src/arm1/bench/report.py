@@ -160,6 +160,14 @@ ROWS += [
     ('laser scan cost (ms per scan, 720 rays)', 'laser', 'scan_ms', '', None, '%.2f'),
     ('  of which the ray cast, masking and noise (ms)', 'laser', 'cast_ms', '', None, '%.2f'),
 ]
+# a concave collision mesh made into triangle hulls (bench/meshes.py): arm1's link2, 592 triangles
+ROWS += [
+    ('concave mesh spawn, empty cache (ms)', 'concave_mesh', 'spawn_first_ms', '', None, '%.0f'),
+    ('  the same mesh, from the cache (ms)', 'concave_mesh', 'spawn_cached_ms', '', None, '%.0f'),
+    ('  the same mesh as its convex hull (ms)', 'concave_mesh', 'spawn_hull_ms', '', None, '%.0f'),
+    ('concave mesh, a box resting on it: step (ms)', 'concave_mesh', 'step_ms', '', None, '%.2f'),
+    ('  the same on its convex hull: step (ms)', 'concave_mesh', 'step_hull_ms', '', None, '%.2f'),
+]
 # the browser view (bench/web.py): gazebo.launch web:=true at real time, page closed and open in
 # headless Chromium; then arm1's camera subscribed: images per sim second against its update_rate
 ROWS += [

@@ -16,6 +16,7 @@ from .depth import depth_frame
 from .idle import idle_world
 from .latency import latency, publisher
 from .launched import realtime, seed_goal, startup
+from .meshes import concave_mesh
 from .render import render
 from .sensors import laser_scan
 from .speed import standin
@@ -34,6 +35,7 @@ KINDS: Dict[str, Callable[..., Any]] = {
     'laser': laser_scan,
     'depth': depth_frame,
     'web_view': web_view,
+    'concave_mesh': concave_mesh,
 }
 
 

@@ -29,6 +29,9 @@ class Limits:
     models: int = 1000  # per world
     mesh_bytes: int = 256 * 1024 * 1024  # one mesh file
     mesh_triangles: int = 5_000_000  # one mesh
+    # one concave collision mesh made into one hull per triangle (physics/concave_meshes);
+    # a larger one collides as its convex hull
+    concave_mesh_triangles: int = 200_000
     rays_per_laser: int = 1_000_000  # samples x vertical samples of one ray sensor
     # rays x update rate of the world's ray sensors, each and all together (rate 0 counted
     # as sensor_update_rate): lasers are cast on the physics thread, ~2 us a ray here

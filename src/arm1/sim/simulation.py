@@ -22,6 +22,7 @@ from ..description.names import IllegalName, check_name, shown
 from ..description.pose_math import normalized
 from ..description.sdf_world import WorldConfig
 from ..description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
+from ..physics.concave_meshes import concave_collisions
 from ..physics.contact import set_collision_namer
 from ..physics.laser import ray_casts_per_second
 from ..physics.robot import Robot, RobotLoadError
@@ -162,6 +163,8 @@ class Simulation:
         try:
             description = parse_urdf(urdf_xml, limits)
             resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages, limits)
+            # concave collision meshes as their triangles, as ODE's trimeshes (not their hull)
+            resolved = concave_collisions(resolved, limits=limits)
             # As Gazebo's URDF->SDF: fixed joints lumped, frames weightless, <gazebo> tags
             resolved, options = prepare_body(resolved, description, name)
             sensors = camera_sensors(description, limits)

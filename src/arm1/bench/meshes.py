@@ -1,0 +1,70 @@
+"""What a concave collision mesh costs (physics/concave_meshes.py): its spawn with an empty
+cache (concavity check, triangle hulls written, pybullet loading them), its spawn from the
+cache, and a physics step with a box resting on it; each next to the same mesh as pybullet's
+convex hull. The mesh is arm1's link2 (592 triangles, concave by 59 mm), on a moving link.
+In one process, no master needed.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import time
+from typing import Any, Dict
+
+import pybullet as p
+
+from ..description.limits import Limits
+from ..description.sdf_world import WorldConfig
+from ..paths import repo_root
+from ..physics.concave_meshes import mesh_triangles
+from ..sim.simulation import Simulation
+from .probes import median_ms
+
+ROBOT = """<robot name="holder"><link name="world"/>
+  <link name="part"><inertial><mass value="0.2"/>
+    <inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><mesh filename="%s"/></geometry></collision></link>
+  <joint name="slide" type="prismatic"><parent link="world"/><child link="part"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="100" velocity="1"/><dynamics friction="100"/></joint>
+</robot>"""
+
+
+def _world(mesh: str, hull: bool, count: int) -> Dict[str, float]:
+    """Spawn time (ms) and median step time (ms) with a box resting on the mesh."""
+    config = WorldConfig()
+    if hull:  # over the limit: the mesh collides as its convex hull
+        config.limits = Limits(concave_mesh_triangles=1)
+    sim = Simulation(config)
+    try:
+        t = time.perf_counter()
+        model = sim.spawn_urdf('holder', ROBOT % mesh)
+        spawn_ms = (time.perf_counter() - t) * 1000.0
+        cid = sim.world.client
+        low, high = p.getAABB(model.robot.body, 0, physicsClientId=cid)
+        shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=(0.01,) * 3, physicsClientId=cid)
+        centre = ((low[0] + high[0]) / 2, (low[1] + high[1]) / 2, high[2] + 0.02)
+        p.createMultiBody(0.05, shape, basePosition=centre, physicsClientId=cid)
+        for _ in range(500):  # the box falls onto the part and settles
+            sim.step()
+        return {'spawn_ms': spawn_ms, 'step_ms': median_ms(sim.step, count)}
+    finally:
+        sim.close()
+
+
+def concave_mesh(count: int = 2000) -> Dict[str, Any]:
+    mesh = os.path.join(repo_root(), 'meshes', 'link2.STL')
+    with tempfile.TemporaryDirectory(prefix='arm1-bench-cache-') as cache:
+        os.environ['XDG_CACHE_HOME'] = cache  # an empty cache: the first spawn computes
+        first = _world(mesh, False, count)
+        cached = _world(mesh, False, count)
+        hull = _world(mesh, True, count)
+    return {
+        'triangles': len(mesh_triangles(mesh)),
+        'spawn_first_ms': first['spawn_ms'],
+        'spawn_cached_ms': cached['spawn_ms'],
+        'spawn_hull_ms': hull['spawn_ms'],
+        'step_ms': cached['step_ms'],
+        'step_hull_ms': hull['step_ms'],
+    }

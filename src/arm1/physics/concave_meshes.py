@@ -1,0 +1,300 @@
+"""Concave collision meshes that collide as their triangles do, as ODE's trimeshes in Gazebo.
+
+pybullet gives a mesh on a link its convex hull (a U-shaped finger collides as a block; a
+pad slanted by the hull squeezes a box out). Its exact triangle mesh (``concave="yes"``)
+collides with no other concave shape, the ground plane included. So a concave mesh becomes
+one small convex hull per triangle, written as one .obj object each, which pybullet's URDF
+loader turns into a compound of hulls: exact on every face, and colliding with anything.
+
+pybullet inflates each hull by its collision margin (1 mm). Each triangle is moved inward by
+half of it, so contacts and rays both see the surface within 0.5 mm (contacts 0.5 mm out,
+rays 0.5 mm in). Each triangle hull is thin (about 2 mm with its margin): a body pushed
+deeper than that into a face passes through it, where ODE's trimesh would push it back out.
+
+A mesh is concave when some point of its hull stands more than CONCAVE_DEPTH out of a
+face's plane; a convex one (or one within that depth of convex) keeps pybullet's hull and
+costs nothing but its check. Results are cached by the mesh file's content and scale, so a
+second spawn reads one small file; a mesh over ``Limits.concave_mesh_triangles`` keeps its
+hull, with a warning.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import os
+import re
+import tempfile
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from typing import List, Optional, Sequence, Tuple
+
+import numpy as np
+import pybullet as p
+
+from ..description.limits import Limits
+from ..description.mesh_limits import mesh_kind
+from .stl import read_stl
+
+log = logging.getLogger('arm1.physics')
+
+MARGIN = 0.001  # pybullet's collision margin of a URDF mesh's hulls (gUrdfDefaultCollisionMargin)
+SHRINK = MARGIN / 2  # each triangle moved inward by this: rays and contacts both off by half
+CONCAVE_DEPTH = 0.0005  # m: a hull standing out less than this from the faces counts as convex
+THICKNESS = 0.002  # m: how deep each triangle's prism reaches into the body
+VERSION = 1  # of the cached files' format; a change makes new ones
+CHUNK = 1 << 22  # face x hull-vertex products per numpy batch of the concavity check
+
+
+class MeshReadError(ValueError):
+    """The mesh cannot be read into triangles; the message names the file."""
+
+
+def default_cache_dir() -> str:
+    base = os.environ.get('XDG_CACHE_HOME') or os.path.join(os.path.expanduser('~'), '.cache')
+    return os.path.join(base, 'arm1', 'collision_meshes')
+
+
+# ------------------------------------------------------------------------------ triangles
+def mesh_triangles(path: str) -> np.ndarray:
+    """(n, 3, 3) triangles of an .stl, .obj or .dae file, in the file's units (COLLADA's
+    <unit meter> and node transforms applied, as pybullet's loader applies them)."""
+    kind = mesh_kind(path)
+    try:
+        if kind == '.stl':
+            return read_stl(path)[0]
+        if kind == '.obj':
+            return _obj_triangles(path)
+        if kind == '.dae':
+            return _dae_triangles(path)
+    except (OSError, ValueError, IndexError) as exc:
+        raise MeshReadError('%s: cannot read its triangles: %s' % (path, exc)) from None
+    raise MeshReadError('%s: not an .stl, .obj or .dae mesh' % path)
+
+
+def _obj_triangles(path: str) -> np.ndarray:
+    vertices: List[Tuple[float, float, float]] = []
+    faces: List[Tuple[int, int, int]] = []
+    with open(path, encoding='utf-8', errors='replace') as f:
+        for line in f:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == 'v' and len(parts) >= 4:
+                vertices.append((float(parts[1]), float(parts[2]), float(parts[3])))
+            elif parts[0] == 'f' and len(parts) >= 4:
+                refs = []
+                for ref in parts[1:]:
+                    i = int(ref.split('/')[0])
+                    refs.append(i - 1 if i > 0 else len(vertices) + i)
+                for k in range(1, len(refs) - 1):  # a polygon as a fan
+                    faces.append((refs[0], refs[k], refs[k + 1]))
+    if not faces:
+        return np.zeros((0, 3, 3))
+    return np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
+
+
+def _dae_triangles(path: str) -> np.ndarray:
+    import collada  # pycollada: only COLLADA meshes need it
+
+    try:
+        document = collada.Collada(
+            path, ignore=[collada.common.DaeUnsupportedError, collada.common.DaeBrokenRefError]
+        )
+    except collada.common.DaeError as exc:
+        raise ValueError(str(exc)) from None
+    unit = float(getattr(document.assetInfo, 'unitmeter', None) or 1.0)
+    out = []
+    if document.scene is not None:
+        for geometry in document.scene.objects('geometry'):
+            for primitive in geometry.primitives():
+                if isinstance(primitive, collada.triangleset.BoundTriangleSet):
+                    tris = primitive
+                elif hasattr(primitive, 'triangleset'):
+                    tris = primitive.triangleset()
+                else:
+                    continue  # lines and points have no surface
+                if len(tris.vertex_index):
+                    out.append(np.asarray(tris.vertex, dtype=np.float64)[tris.vertex_index])
+    if not out:
+        return np.zeros((0, 3, 3))
+    return np.concatenate(out) * unit
+
+
+# ------------------------------------------------------------------------------ concavity
+def _normals(triangles: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """Unit normals and a mask of the triangles that have one (not degenerate)."""
+    n = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    length = np.linalg.norm(n, axis=1)
+    ok = length > 1e-12 * max(1.0, float(np.abs(triangles).max(initial=0.0))) ** 2
+    n[ok] /= length[ok, None]
+    return n, ok
+
+
+def _outward(triangles: np.ndarray) -> float:
+    """+1 when the triangles wind outward (positive enclosed volume), -1 otherwise."""
+    volume = np.einsum(
+        'ij,ij->i', triangles[:, 0], np.cross(triangles[:, 1], triangles[:, 2])
+    ).sum()
+    return 1.0 if volume >= 0 else -1.0
+
+
+def hull_points(triangles: np.ndarray) -> np.ndarray:
+    """The convex hull's vertices, by pybullet's hull computer, in a client of its own."""
+    points = np.unique(triangles.reshape(-1, 3), axis=0)
+    with tempfile.TemporaryDirectory(prefix='arm1-hull-') as folder:
+        path = os.path.join(folder, 'points.obj')
+        with open(path, 'w') as f:
+            f.writelines('v %r %r %r\n' % tuple(v) for v in points)
+            # pybullet's OBJ loader takes the vertices its faces name: one fan over them all
+            f.writelines('f 1 %d %d\n' % (i, i + 1) for i in range(2, len(points)))
+        client = p.connect(p.DIRECT)
+        try:
+            shape = p.createCollisionShape(p.GEOM_MESH, fileName=path, physicsClientId=client)
+            body = p.createMultiBody(0, shape, physicsClientId=client)
+            _, hull = p.getMeshData(body, -1, physicsClientId=client)
+        finally:
+            p.disconnect(client)
+    return np.asarray(hull, dtype=np.float64).reshape(-1, 3)
+
+
+def concavity(triangles: np.ndarray, hull: Optional[np.ndarray] = None) -> float:
+    """How far (in the triangles' units) the convex hull stands out of the mesh: the largest
+    distance of a hull vertex in front of a face's plane. 0 for a convex mesh."""
+    if len(triangles) < 4:
+        return 0.0
+    n, ok = _normals(triangles)
+    n, a = n[ok] * _outward(triangles), triangles[ok, 0]
+    hull = hull_points(triangles) if hull is None else hull
+    offsets = np.einsum('ij,ij->i', n, a)
+    depth = 0.0
+    step = max(1, CHUNK // max(1, len(hull)))
+    for i in range(0, len(n), step):
+        heights = n[i : i + step] @ hull.T - offsets[i : i + step, None]
+        depth = max(depth, float(heights.max()))
+    return depth
+
+
+# --------------------------------------------------------------------- triangle hulls
+def write_triangle_hulls(triangles: np.ndarray, path: str) -> None:
+    """One .obj object per triangle: a prism from the triangle moved inward by SHRINK to
+    THICKNESS deeper (metres: already scaled)."""
+    n, ok = _normals(triangles)
+    inward = (-_outward(triangles) * n[ok])[:, None, :]
+    top = triangles[ok] + SHRINK * inward
+    bottom = top + THICKNESS * inward
+    lines = []
+    for i, (a, b) in enumerate(zip(top, bottom)):
+        lines.append('o t%d\n' % i)
+        lines.extend('v %.9g %.9g %.9g\n' % tuple(v) for v in np.concatenate([a, b]))
+        k = 6 * i
+        # a closed prism: both ends and three sides (pybullet takes the hull of its vertices)
+        faces = (
+            (1, 2, 3),
+            (4, 6, 5),
+            (1, 4, 5),
+            (1, 5, 2),
+            (2, 5, 6),
+            (2, 6, 3),
+            (3, 6, 4),
+            (3, 4, 1),
+        )
+        lines.extend('f %d %d %d\n' % (k + x, k + y, k + z) for x, y, z in faces)
+    _atomic_write(path, ''.join(lines))
+
+
+def _atomic_write(path: str, text: str) -> None:
+    """Whole or not at all, whoever else writes the same cache file at once."""
+    folder = os.path.dirname(path)
+    os.makedirs(folder, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=folder, prefix='.tmp-')
+    with os.fdopen(fd, 'w') as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+@dataclass
+class CollisionMesh:
+    """What a collision mesh becomes: ``path`` to load (None: the mesh as it is)."""
+
+    path: Optional[str]
+    concavity: float  # metres, at its scale
+    cached: bool  # read from the cache, nothing computed
+
+
+def collision_mesh(
+    path: str,
+    scale: Sequence[float],
+    cache_dir: Optional[str] = None,
+    limits: Optional[Limits] = None,
+) -> CollisionMesh:
+    """The mesh at ``path`` (scaled by ``scale``) as it should collide: its triangle hulls
+    when it is concave, else itself. Raises MeshReadError for an unreadable mesh."""
+    limits = limits or Limits()
+    folder = cache_dir or default_cache_dir()
+    with open(path, 'rb') as f:
+        digest = hashlib.sha256(f.read()).hexdigest()
+    key = hashlib.sha256(
+        ('%s %d %r' % (digest, VERSION, tuple(float(s) for s in scale))).encode()
+    ).hexdigest()[:32]
+    info_path = os.path.join(folder, key + '.json')
+    hulls_path = os.path.join(folder, key + '.obj')
+    try:
+        with open(info_path) as f:
+            info = json.load(f)
+        if info['concave'] is False or os.path.exists(hulls_path):
+            return CollisionMesh(hulls_path if info['concave'] else None, info['depth'], True)
+    except (OSError, ValueError, KeyError):
+        pass
+    triangles = mesh_triangles(path) * np.asarray(scale, dtype=np.float64)
+    depth = concavity(triangles)
+    concave = depth > CONCAVE_DEPTH
+    if concave and len(triangles) > limits.concave_mesh_triangles:
+        log.warning(
+            '%s: concave by %.1f mm but %d triangles, over the limit concave_mesh_triangles '
+            '(%d): it collides as its convex hull',
+            path,
+            depth * 1e3,
+            len(triangles),
+            limits.concave_mesh_triangles,
+        )
+        return CollisionMesh(None, depth, False)
+    if concave:
+        write_triangle_hulls(triangles, hulls_path)
+    _atomic_write(info_path, json.dumps({'concave': bool(concave), 'depth': depth, 'mesh': path}))
+    return CollisionMesh(hulls_path if concave else None, depth, False)
+
+
+_SCALE = re.compile(r'\s+')
+
+
+def concave_collisions(
+    urdf_text: str, cache_dir: Optional[str] = None, limits: Optional[Limits] = None
+) -> str:
+    """The URDF with each concave ``<collision>`` mesh (absolute paths: resolve_mesh_uris
+    ran) replaced by its triangle hulls; visuals are left alone."""
+    root = ET.fromstring(urdf_text)
+    changed = False
+    for link in root.findall('link'):
+        for mesh in link.findall('collision/geometry/mesh'):
+            filename = mesh.get('filename', '')
+            text = (mesh.get('scale') or '1 1 1').strip()
+            try:
+                scale = [float(v) for v in _SCALE.split(text)]
+                if len(scale) != 3:
+                    raise ValueError(text)
+                result = collision_mesh(filename, scale, cache_dir, limits)
+            except (MeshReadError, ValueError, OSError) as exc:
+                log.warning(
+                    "link '%s': mesh %s collides as its convex hull: %s",
+                    link.get('name'),
+                    filename,
+                    exc,
+                )
+                continue
+            if result.path is not None:
+                mesh.set('filename', result.path)
+                mesh.set('scale', '1 1 1')  # the hulls are written at the mesh's scale
+                changed = True
+    return ET.tostring(root, encoding='unicode') if changed else urdf_text

@@ -1,0 +1,185 @@
+"""Concave collision meshes collide as their triangles do (physics/concave_meshes.py): the
+concavity check, the cache, .stl/.obj/.dae read alike, and on a U-shaped mesh of our own
+rays and a resting box find the inner surfaces within a millimetre, where pybullet's hull
+would fill the slot."""
+
+import os
+
+import numpy as np
+import pybullet as p
+import pytest
+
+from arm1.description.limits import Limits
+from arm1.description.sdf_world import WorldConfig
+from arm1.physics import concave_meshes
+from arm1.physics.concave_meshes import (
+    collision_mesh,
+    concave_collisions,
+    concavity,
+    mesh_triangles,
+)
+from arm1.physics.stl import write_binary_stl
+from arm1.sim.simulation import Simulation
+
+# A U of 40 mm x 30 mm, 20 mm deep: prongs 10 mm thick, a slot 20 mm wide down to z = 10 mm.
+W, H, T, D = 0.04, 0.03, 0.01, 0.02
+
+
+def _quad(a, b, c, d):
+    return [[a, b, c], [a, c, d]]
+
+
+def u_triangles():
+    outline = [(0, 0), (W, 0), (W, H), (W - T, H), (W - T, T), (T, T), (T, H), (0, H)]
+    tris = []
+    for i, (x0, z0) in enumerate(outline):
+        x1, z1 = outline[(i + 1) % len(outline)]
+        tris += _quad((x0, 0, z0), (x0, D, z0), (x1, D, z1), (x1, 0, z1))
+    for (x0, z0), (x1, z1) in (((0, 0), (T, H)), ((T, 0), (W - T, T)), ((W - T, 0), (W, H))):
+        tris += _quad((x0, 0, z0), (x1, 0, z0), (x1, 0, z1), (x0, 0, z1))
+        tris += _quad((x0, D, z0), (x0, D, z1), (x1, D, z1), (x1, D, z0))
+    tris = np.array(tris, dtype=float)
+    volume = np.einsum('ij,ij->i', tris[:, 0], np.cross(tris[:, 1], tris[:, 2])).sum() / 6
+    assert volume == pytest.approx(W * H * D - (W - 2 * T) * (H - T) * D)  # outward
+    return tris
+
+
+def cube_triangles(size=0.03):
+    s = size
+    c = [(x, y, z) for x in (0, s) for y in (0, s) for z in (0, s)]
+    faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    return np.array([t for f in faces for t in _quad(*(c[i] for i in f))], dtype=float)
+
+
+def write_obj(path, tris):
+    with open(path, 'w') as f:
+        for t in tris:
+            f.writelines('v %r %r %r\n' % tuple(v) for v in t)
+        f.writelines('f %d %d %d\n' % (3 * i + 1, 3 * i + 2, 3 * i + 3) for i in range(len(tris)))
+
+
+def write_dae(path, tris):
+    flat = ' '.join('%r' % v for v in tris.reshape(-1))
+    index = ' '.join(str(i) for i in range(3 * len(tris)))
+    with open(path, 'w') as f:
+        f.write(
+            '<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" '
+            'version="1.4.1"><asset><unit meter="0.001"/><up_axis>Z_UP</up_axis></asset>'
+            '<library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" '
+            'count="%d">%s</float_array><technique_common><accessor source="#pa" count="%d" '
+            'stride="3"><param name="X" type="float"/><param name="Y" type="float"/>'
+            '<param name="Z" type="float"/></accessor></technique_common></source>'
+            '<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>'
+            '<triangles count="%d"><input semantic="VERTEX" source="#v" offset="0"/><p>%s</p>'
+            '</triangles></mesh></geometry></library_geometries><library_visual_scenes>'
+            '<visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node>'
+            '</visual_scene></library_visual_scenes><scene><instance_visual_scene url="#s"/>'
+            '</scene></COLLADA>' % (tris.size, flat, 3 * len(tris), len(tris), index)
+        )
+
+
+def test_a_cube_is_convex_and_a_u_is_concave_by_its_slot():
+    assert concavity(cube_triangles()) == pytest.approx(0.0, abs=1e-9)
+    # the inner wall x = W - T, facing -x, has the left prong 30 mm in front of it
+    assert concavity(u_triangles()) == pytest.approx(W - T)
+
+
+@pytest.mark.parametrize('ext', ['.stl', '.obj', '.dae'])
+def test_stl_obj_and_dae_read_alike(tmp_path, ext):
+    path = str(tmp_path / ('u' + ext))
+    tris = u_triangles()
+    if ext == '.stl':
+        write_binary_stl(path, tris)
+    elif ext == '.obj':
+        write_obj(path, tris)
+    else:
+        write_dae(path, tris * 1000)  # in millimetres, <unit meter="0.001">
+    read = mesh_triangles(path)
+    assert read.shape == tris.shape
+    assert np.allclose(np.sort(read.reshape(-1, 3), axis=0), np.sort(tris.reshape(-1, 3), axis=0))
+
+
+def test_a_convex_mesh_is_left_alone_and_a_concave_one_cached(tmp_path, monkeypatch):
+    cube, u = str(tmp_path / 'cube.stl'), str(tmp_path / 'u.stl')
+    write_binary_stl(cube, cube_triangles())
+    write_binary_stl(u, u_triangles())
+    cache = str(tmp_path / 'cache')
+    first = collision_mesh(cube, (1, 1, 1), cache)
+    assert first.path is None and not first.cached
+    assert collision_mesh(cube, (1, 1, 1), cache).cached  # the check is not made again
+    made = collision_mesh(u, (1, 1, 1), cache)
+    assert made.path is not None and not made.cached and os.path.exists(made.path)
+    # a second spawn reads the cache: nothing is computed
+    monkeypatch.setattr(concave_meshes, 'concavity', lambda *a: pytest.fail('computed again'))
+    again = collision_mesh(u, (1, 1, 1), cache)
+    assert again.cached and again.path == made.path
+    # another scale is another mesh
+    monkeypatch.undo()
+    assert collision_mesh(u, (2, 2, 2), cache).path != made.path
+
+
+def test_a_concave_mesh_over_the_limit_keeps_its_hull(tmp_path):
+    u = str(tmp_path / 'u.stl')
+    write_binary_stl(u, u_triangles())
+    result = collision_mesh(u, (1, 1, 1), str(tmp_path), Limits(concave_mesh_triangles=10))
+    assert result.path is None and result.concavity > 0.01
+
+
+def test_an_unreadable_mesh_keeps_its_hull_with_a_warning(tmp_path, caplog):
+    bad = tmp_path / 'bad.obj'
+    bad.write_text('v 0 0 x\nf 1 2 3\n')
+    urdf = (
+        '<robot name="r"><link name="l"><collision><geometry><mesh filename="%s"/></geometry>'
+        '</collision></link></robot>' % bad
+    )
+    assert concave_collisions(urdf, str(tmp_path)) == urdf
+    assert 'bad.obj' in caplog.text and "link 'l'" in caplog.text
+
+
+def u_robot(path, z):
+    inertia = '<inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/>'
+    return (
+        '<robot name="u"><link name="world"/><link name="u"><inertial><mass value="0.2"/>%s'
+        '</inertial><collision><geometry><mesh filename="%s"/></geometry></collision></link>'
+        '<joint name="lift" type="prismatic"><parent link="world"/><child link="u"/>'
+        '<origin xyz="0 0 %r"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="100" '
+        'velocity="1"/><dynamics friction="100"/></joint></robot>' % (inertia, path, z)
+    )
+
+
+def test_the_slot_of_a_u_on_a_moving_link_is_seen_within_a_millimetre(tmp_path, monkeypatch):
+    path = str(tmp_path / 'u.stl')
+    write_binary_stl(path, u_triangles())
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'cache'))
+    sim = Simulation(WorldConfig())
+    try:
+        z0 = 0.1
+        model = sim.spawn_urdf('u', u_robot(path, z0))
+        cid, y = sim.world.client, D / 2
+        # down into the slot, 3 mm or more from its walls: the floor at z0 + T
+        xs = np.linspace(T + 0.003, W - T - 0.003, 12)
+        hits = p.rayTestBatch(
+            [(x, y, z0 + 0.1) for x in xs], [(x, y, z0 - 0.1) for x in xs], physicsClientId=cid
+        )
+        assert all(h[0] == model.robot.body for h in hits)
+        assert max(abs(h[3][2] - (z0 + T)) for h in hits) < 0.001
+        # from the middle of the slot out to each inner wall, 3 mm or more from floor and top
+        zs = np.linspace(z0 + T + 0.003, z0 + H - 0.003, 12)
+        for end, wall in ((W + 0.1, W - T), (-0.1, T)):
+            hits = p.rayTestBatch(
+                [(W / 2, y, z) for z in zs], [(end, y, z) for z in zs], physicsClientId=cid
+            )
+            assert max(abs(h[3][0] - wall) for h in hits) < 0.001
+        # a 10 mm box dropped into the slot rests on its floor
+        box = p.createMultiBody(
+            0.01,
+            p.createCollisionShape(p.GEOM_BOX, halfExtents=(0.005,) * 3, physicsClientId=cid),
+            basePosition=(W / 2, y, z0 + 0.02),
+            physicsClientId=cid,
+        )
+        for _ in range(500):
+            sim.step()
+        bottom = p.getBasePositionAndOrientation(box, physicsClientId=cid)[0][2] - 0.005
+        assert abs(bottom - (z0 + T)) < 0.001
+    finally:
+        sim.close()
