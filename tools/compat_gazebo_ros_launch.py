@@ -41,6 +41,9 @@ ARM1_ARGS: List[Tuple[str, str]] = [
     ('real_time_factor', ''),
     ('real_time_update_rate', ''),
     ('lockstep', 'false'),
+    ('web', 'false'),  # the browser view (docs/web-view.md)
+    ('web_host', '127.0.0.1'),
+    ('web_port', '8080'),
 ]
 
 EMPTY_WORLD = '''<launch>
