@@ -87,6 +87,14 @@ class Robot:
                 physicsClientId=client,
             )
         self.movable = movable
+        if not movable:
+            # Static friction that holds, as ODE's does: without a friction anchor pybullet
+            # lets a gripped object creep through the fingers (2-3 mm in 5 s). Bullet anchors
+            # a contact if either body asks, so the objects' asking (bodies without joints:
+            # boxes, cans, tables) covers every grip. Its own call: pybullet drops some
+            # settings passed beside others.
+            for i in range(-1, p.getNumJoints(self.body, physicsClientId=client)):
+                p.changeDynamics(self.body, i, frictionAnchor=1, physicsClientId=client)
         # Links whose weight is cancelled before each step (turnGravityOff): (index, mass)
         self.gravity_off = []
         if options is not None:
@@ -194,7 +202,8 @@ class Robot:
         links hold: a velocity motor at (target - position) / dt, capped at ``max_forces``
         (what the joint pushes an obstacle with). A joint that reached its last target moves
         freely: its velocity is set to that too, so its inertia costs no step; one held back
-        (blocked, or its force too small) gets the motor alone, not a kick into the obstacle."""
+        (blocked, or its force too small) or just teleported (spawn, reset) gets the motor
+        alone, not a kick into the obstacle."""
         if not indices:
             return
         cid = self.client
@@ -206,7 +215,7 @@ class Robot:
             velocity = (target - position) / dt
             velocities.append(velocity)
             last = targets.get(i)
-            if last is None or abs(position - last) <= REACHED:
+            if last is not None and abs(position - last) <= REACHED:
                 free.append(i)
                 free_pos.append([position])
                 free_vel.append([velocity])
@@ -234,6 +243,13 @@ class Robot:
             p.resetJointState(
                 self.body, self.joint_index[name], value, 0.0, physicsClientId=self.client
             )
+        self._forget_motion()
+
+    def _forget_motion(self):
+        """After a teleport: no last target reached, no mimic reaction from before it."""
+        self._position_targets.clear()
+        for m in self.mimics:
+            m.last_effort = 0.0
 
     def reset(self):
         """Back to the spawn pose, every joint at zero and at rest."""
@@ -243,6 +259,7 @@ class Robot:
         p.resetBaseVelocity(self.body, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
         for i in self.movable:
             p.resetJointState(self.body, i, 0.0, 0.0, physicsClientId=self.client)
+        self._forget_motion()
 
     def state(self):
         """Base pose and the positions of the movable joints: all a mirror needs to look alike."""
