@@ -13,9 +13,9 @@ deeper than that into a face passes through it, where ODE's trimesh would push i
 
 A mesh is concave when some point of its hull stands more than CONCAVE_DEPTH out of a
 face's plane; a convex one (or one within that depth of convex) keeps pybullet's hull and
-costs nothing but its check. Results are cached by the mesh file's content and scale, so a
-second spawn reads one small file; a mesh over ``Limits.concave_mesh_triangles`` keeps its
-hull, with a warning.
+costs nothing but its check. Results are cached by the mesh file's content and scale, so
+a second spawn reads one small file. A mesh over ``Limits.concave_mesh_triangles`` keeps
+its hull unchecked (the check grows as triangles x hull vertices), with a warning.
 """
 
 from __future__ import annotations
@@ -159,9 +159,13 @@ def hull_points(triangles: np.ndarray) -> np.ndarray:
     return np.asarray(hull, dtype=np.float64).reshape(-1, 3)
 
 
-def concavity(triangles: np.ndarray, hull: Optional[np.ndarray] = None) -> float:
+def concavity(
+    triangles: np.ndarray, hull: Optional[np.ndarray] = None, stop_above: float = np.inf
+) -> float:
     """How far (in the triangles' units) the convex hull stands out of the mesh: the largest
-    distance of a hull vertex in front of a face's plane. 0 for a convex mesh."""
+    distance of a hull vertex in front of a face's plane. 0 for a convex mesh. With
+    ``stop_above`` the search may end once that is passed (the answer is then a value above
+    it, not necessarily the largest): a concave mesh is told quickly."""
     if len(triangles) < 4:
         return 0.0
     n, ok = _normals(triangles)
@@ -173,6 +177,8 @@ def concavity(triangles: np.ndarray, hull: Optional[np.ndarray] = None) -> float
     for i in range(0, len(n), step):
         heights = n[i : i + step] @ hull.T - offsets[i : i + step, None]
         depth = max(depth, float(heights.max()))
+        if depth > stop_above:
+            break
     return depth
 
 
@@ -219,7 +225,7 @@ class CollisionMesh:
     """What a collision mesh becomes: ``path`` to load (None: the mesh as it is)."""
 
     path: Optional[str]
-    concavity: float  # metres, at its scale
+    concavity: float  # metres, at its scale (past CONCAVE_DEPTH: at least this)
     cached: bool  # read from the cache, nothing computed
 
 
@@ -248,18 +254,18 @@ def collision_mesh(
     except (OSError, ValueError, KeyError):
         pass
     triangles = mesh_triangles(path) * np.asarray(scale, dtype=np.float64)
-    depth = concavity(triangles)
-    concave = depth > CONCAVE_DEPTH
-    if concave and len(triangles) > limits.concave_mesh_triangles:
+    if len(triangles) > limits.concave_mesh_triangles:
+        # the check itself grows as triangles x hull vertices: not made past the limit
         log.warning(
-            '%s: concave by %.1f mm but %d triangles, over the limit concave_mesh_triangles '
-            '(%d): it collides as its convex hull',
+            '%s: %d triangles, over the limit concave_mesh_triangles (%d): it collides as '
+            'its convex hull, concave or not',
             path,
-            depth * 1e3,
             len(triangles),
             limits.concave_mesh_triangles,
         )
-        return CollisionMesh(None, depth, False)
+        return CollisionMesh(None, 0.0, False)
+    depth = concavity(triangles, stop_above=CONCAVE_DEPTH)
+    concave = depth > CONCAVE_DEPTH
     if concave:
         write_triangle_hulls(triangles, hulls_path)
     _atomic_write(info_path, json.dumps({'concave': bool(concave), 'depth': depth, 'mesh': path}))
