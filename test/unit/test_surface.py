@@ -6,6 +6,7 @@ a box on a ramp starts to slide where tan(slope) = min(mu_box, mu_ramp)."""
 import math
 import xml.etree.ElementTree as ET
 
+import pybullet as p
 import pytest
 
 from arm1.description.gazebo_tags import prepare_body
@@ -193,3 +194,28 @@ def test_equal_default_surfaces_hold_at_mu_1():
     # Gazebo's default mu 1 on both (pybullet's own default would be 0.5 x 0.5 = 0.25)
     assert slide(1.0, 1.0, 0.9) < 0.001
     assert slide(1.0, 1.0, 1.1) > 0.02
+
+
+def test_a_child_links_friction_is_applied_too():
+    # pybullet drops a link's lateralFriction given in the same changeDynamics call as
+    # linearDamping: the surfaces are set in calls of their own
+    urdf = (
+        '<robot name="arm"><link name="base"><inertial><mass value="1"/>%s</inertial>'
+        '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>'
+        '<link name="finger"><inertial><mass value="0.1"/>%s</inertial><collision>'
+        '<geometry><box size="0.02 0.02 0.05"/></geometry></collision></link>'
+        '<joint name="j" type="revolute"><parent link="base"/><child link="finger"/>'
+        '<origin xyz="0 0 0.1"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" '
+        'velocity="1"/></joint><gazebo reference="finger"><mu1>0.3</mu1><mu2>0.3</mu2>'
+        '</gazebo></robot>' % (INERTIA, INERTIA)
+    )
+    sim = Simulation(WorldConfig())
+    try:
+        robot = sim.spawn_urdf('arm', urdf).robot
+        finger = p.getDynamicsInfo(
+            robot.body, robot.link_index['finger'], physicsClientId=sim.world.client
+        )
+        base = p.getDynamicsInfo(robot.body, -1, physicsClientId=sim.world.client)
+        assert finger[1] == pytest.approx(0.3**0.5) and base[1] == pytest.approx(1.0)
+    finally:
+        sim.close()
