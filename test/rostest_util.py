@@ -38,6 +38,21 @@ class Recorder:
         with self.lock:
             self.msgs = []
 
+    def last_sim_seconds(self, span):
+        """The stamped messages of the newest ``span`` s of sim time, oldest first: back from
+        the newest while the stamps stay within ``span`` of it (and do not jump forward, as
+        they do across a reset). Judged by stamps, so a busy machine's slower world gives the
+        same messages."""
+        with self.lock:
+            msgs = [m for _, m in self.msgs]
+        recent = []
+        for m in reversed(msgs):
+            age = (msgs[-1].header.stamp - m.header.stamp).to_sec()
+            if not 0.0 <= age <= span:
+                break
+            recent.append(m)
+        return recent[::-1]
+
 
 def wait_for(predicate, timeout, poll=0.05):
     """Wall-clock wait until predicate() is true; returns its last value."""

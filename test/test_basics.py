@@ -57,8 +57,7 @@ class Basics(WorldTestCase):
         """True once the joint has stayed within tol of target for 0.5 s of sim time."""
 
         def ok():
-            msgs = [m for m in self.states.since(time.monotonic() - 3.0)]
-            recent = [m for m in msgs if (msgs[-1].header.stamp - m.header.stamp).to_sec() <= 0.5]
+            recent = self.states.last_sim_seconds(0.5)
             return len(recent) >= 20 and all(
                 abs(positions(m)[joint] - target) <= tol for m in recent
             )

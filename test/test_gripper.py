@@ -5,7 +5,6 @@ stalled; the mimic finger mirrors the leader in joint_states; opening reaches it
 
 import os
 import sys
-import time
 
 import actionlib
 import rospy
@@ -77,7 +76,7 @@ class Gripper(WorldTestCase):
         self.assertAlmostEqual(result.effort, 2.0, delta=1e-6)  # pressing at max_effort
 
     def test_3_the_mimic_finger_mirrors_the_leader_in_joint_states(self):
-        recent = self.states.since(time.monotonic() - 1.0)
+        recent = self.states.last_sim_seconds(1.0)  # joint_states at 50 Hz of sim time
         self.assertGreater(len(recent), 10)
         for msg in recent:
             pos = by_name(msg)

@@ -4,7 +4,6 @@ real master: the forward controllers command them, the hardware sets or drives t
 
 import os
 import sys
-import time
 
 import rospy
 import rostest
@@ -50,10 +49,7 @@ class Interfaces(WorldTestCase):
         of sim time (joint_states at 50 Hz)."""
 
         def ok():
-            msgs = self.states.since(time.monotonic() - 5.0)
-            if not msgs:
-                return False
-            recent = [m for m in msgs if (msgs[-1].header.stamp - m.header.stamp).to_sec() <= span]
+            recent = self.states.last_sim_seconds(span)
             return len(recent) >= 10 and all(
                 abs(by_name(m, field)[joint] - target) <= tol for m in recent
             )
