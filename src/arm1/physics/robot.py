@@ -95,14 +95,6 @@ class Robot:
             # settings passed beside others.
             for i in range(-1, p.getNumJoints(self.body, physicsClientId=client)):
                 p.changeDynamics(self.body, i, frictionAnchor=1, physicsClientId=client)
-        if not movable:
-            # Static friction that holds, as ODE's does: without a friction anchor pybullet
-            # lets a gripped object creep through the fingers (2-3 mm in 5 s). Bullet anchors
-            # a contact if either body asks, so the objects' asking (bodies without joints:
-            # boxes, cans, tables) covers every grip. Its own call: pybullet drops some
-            # settings passed beside others.
-            for i in range(-1, p.getNumJoints(self.body, physicsClientId=client)):
-                p.changeDynamics(self.body, i, frictionAnchor=1, physicsClientId=client)
         # Links whose weight is cancelled before each step (turnGravityOff): (index, mass)
         self.gravity_off = []
         if options is not None:
