@@ -20,6 +20,7 @@ W, H, RATE = 160, 120, 10.0
 F = W / (2 * math.tan(1.0471976 / 2))
 WALL = 1.3  # camera_link 0.1 m in front of the base, the wall's near face 1.4 m
 FRAME = 'camera_link_optical'
+STEP = 0.001  # s of sim time: the world's step
 
 
 def topics():
@@ -38,16 +39,28 @@ class DepthCamera(WorldTestCase):
         super().setUpClass()
         assert wait_for(lambda: NS + '/points' in topics(), 60), 'depth_bot did not spawn'
         cls.world = node_pid('/gazebo')
+        # An update instant: camera_info alone goes out at each, without rendering. Not the
+        # first, at the world's first step: the next is one period after the start of time.
+        info = Recorder(NS + '/depth/camera_info', CameraInfo)
+        assert wait_for(lambda: len(info.msgs) >= 3, 60), 'no depth camera_info'
+        info.sub.unregister()
+        cls.instant = info.last().header.stamp.to_sec()
 
-    def check_rate(self, recorder, what):
+    def check_rate(self, recorder, what, every_instant=False):
+        """Judged by the stamps against the sensor's update instants, every 1/RATE s of sim
+        time: at most one message per period of that grid, and with ``every_instant`` each
+        stamped with its instant. A frame rendered at its instant is stamped with it; one that
+        waited for a busy render process (they run at nice 10, so a busy machine starves them)
+        shows the state of when it was rendered, later in a period whose instant got no frame.
+        How many instants get their frame depends on the machine, not on the world."""
         t = stamps(recorder)
-        gaps = [b - a for a, b in zip(t, t[1:])]
-        self.assertTrue(gaps, 'one %s only' % what)
-        # at the sensor's update instants, but for a frame that waited for a busy (or just
-        # started) render process and shows the state of when it was rendered
-        self.assertAlmostEqual(sorted(gaps)[len(gaps) // 2], 1 / RATE, delta=1e-3)
-        # one frame per update instant at most: no more frames than instants in their span
-        self.assertLessEqual(len(t), (t[-1] - t[0]) * RATE + 2, '%s faster than 10 Hz' % what)
+        self.assertGreaterEqual(len(t), 2, 'one %s only' % what)
+        periods = [(x - self.instant) * RATE for x in t]
+        on_grid = [abs(p - round(p)) <= STEP * RATE for p in periods]
+        slots = [round(p) if g else math.floor(p) for p, g in zip(periods, on_grid)]
+        self.assertEqual(slots, sorted(set(slots)), '%s: two in one period, or back' % what)
+        if every_instant:
+            self.assertTrue(all(on_grid), '%s off the %g Hz instants: %s' % (what, RATE, t))
 
     def test_01_nothing_rendered_for_camera_infos_alone(self):
         expected = ('/ir/image_raw', '/ir/camera_info', '/depth/image_raw', '/depth/camera_info')
@@ -57,7 +70,7 @@ class DepthCamera(WorldTestCase):
         info = Recorder(NS + '/depth/camera_info', CameraInfo)
         self.assertTrue(wait_for(lambda: len(info.msgs) >= 6, 30), 'no depth camera_info')
         info.sub.unregister()
-        self.check_rate(info, 'depth/camera_info')
+        self.check_rate(info, 'depth/camera_info', every_instant=True)
         m = info.last()
         self.assertEqual((m.width, m.height, m.header.frame_id), (W, H, FRAME))
         self.assertEqual(list(m.K), [F, 0, 79.5, 0, F, 59.5, 0, 0, 1])
