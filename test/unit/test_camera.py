@@ -650,9 +650,11 @@ def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(
     seconds = 2.0 if lockstep else 4.0
     wall0, sim0, count = time.perf_counter(), sim.time_ns, len(frames)
     step_until(
-        sim,  # in lockstep also six frames: at a few hundredths of real time, 2 s hold ~3
+        sim,  # and six frames in lockstep (at a few hundredths of real time, 2 s hold ~3),
+        # two in default timing (the renderers run at nice 10: a busy machine can starve
+        # them of a whole 4 s window, which then shows no image rate at all)
         lambda: (
-            time.perf_counter() - wall0 >= seconds and (not lockstep or len(frames) - count >= 6)
+            time.perf_counter() - wall0 >= seconds and len(frames) - count >= (6 if lockstep else 2)
         ),
         60,
         pacer,
