@@ -187,8 +187,11 @@ def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
 def start_web_view(node: WorldNode, host: str, port: int) -> None:
     """The browser view (imported only when asked: viser is large); its address is printed,
     logged and left in ``~web_url``."""
-    from .web_view import WebView
-
+    try:
+        from .web_view import WebView
+    except ImportError as exc:  # viser missing: the world runs on without its page
+        rospy.logerr('web view: cannot start (%s); run make setup', exc)
+        return
     try:
         node.web = WebView(
             node.sim, node.calls, node.loop, host, port, node.api._set_paused
