@@ -48,19 +48,19 @@ class DepthCamera(WorldTestCase):
 
     def check_rate(self, recorder, what, every_instant=False):
         """Judged by the stamps against the sensor's update instants, every 1/RATE s of sim
-        time: at most one message per period of that grid, and with ``every_instant`` each
+        time: no more messages than instants in their span, and with ``every_instant`` each
         stamped with its instant. A frame rendered at its instant is stamped with it; one that
         waited for a busy render process (they run at nice 10, so a busy machine starves them)
-        shows the state of when it was rendered, later in a period whose instant got no frame.
-        How many instants get their frame depends on the machine, not on the world."""
+        or was lost with a failed one shows the state of when it was rendered. How many
+        instants get their frame in default timing depends on the machine, not on the world."""
         t = stamps(recorder)
         self.assertGreaterEqual(len(t), 2, 'one %s only' % what)
-        periods = [(x - self.instant) * RATE for x in t]
-        on_grid = [abs(p - round(p)) <= STEP * RATE for p in periods]
-        slots = [round(p) if g else math.floor(p) for p, g in zip(periods, on_grid)]
-        self.assertEqual(slots, sorted(set(slots)), '%s: two in one period, or back' % what)
+        self.assertEqual(t, sorted(set(t)), '%s: stamps repeat or go back' % what)
+        self.assertLessEqual(len(t), (t[-1] - t[0]) * RATE + 2, '%s faster than 10 Hz' % what)
         if every_instant:
-            self.assertTrue(all(on_grid), '%s off the %g Hz instants: %s' % (what, RATE, t))
+            periods = [(x - self.instant) * RATE for x in t]
+            off = [x for x, p in zip(t, periods) if abs(p - round(p)) > STEP * RATE]
+            self.assertEqual(off, [], '%s off the %g Hz instants' % (what, RATE))
 
     def test_01_nothing_rendered_for_camera_infos_alone(self):
         expected = ('/ir/image_raw', '/ir/camera_info', '/depth/image_raw', '/depth/camera_info')
