@@ -73,11 +73,15 @@ class WebView(WorldTestCase):
         cls.links = Recorder('/gazebo/link_states', LinkStates)
         cls.arm = JointCommander(cls.states)
         cls.browser = Browser()
-        cls.browser.open(cls.url)
-        page = cls.browser.wait_js(
-            "document.body.innerText.includes('joint4_position_controller')", 120
-        )
-        assert page, 'the page never showed the controllers'
+        try:  # tearDownClass does not run when setUpClass fails: the browser must not outlive it
+            cls.browser.open(cls.url)
+            page = cls.browser.wait_js(
+                "document.body.innerText.includes('joint4_position_controller')", 120
+            )
+            assert page, 'the page never showed the controllers'
+        except BaseException:
+            cls.browser.close()
+            raise
 
     @classmethod
     def tearDownClass(cls):

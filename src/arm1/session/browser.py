@@ -17,6 +17,18 @@ import urllib.request
 CHROMIUM = shutil.which('chromium') or '/usr/bin/chromium'
 
 
+def _die_with_parent() -> None:
+    """In the child: SIGTERM when the process that started it ends (a killed test or bench
+    leaves no browser behind; Linux's PR_SET_PDEATHSIG)."""
+    import ctypes
+    import signal
+
+    try:
+        ctypes.CDLL('libc.so.6', use_errno=True).prctl(1, signal.SIGTERM)
+    except OSError:
+        pass
+
+
 class Browser:
     """One headless Chromium with one page."""
 
@@ -43,6 +55,7 @@ class Browser:
             ],
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
+            preexec_fn=_die_with_parent,
         )
         port_file = os.path.join(self.profile, 'DevToolsActivePort')
         end = time.time() + timeout
