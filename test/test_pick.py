@@ -10,6 +10,7 @@ the fingers' hardware interface), ``grasp_plugin`` (the arms carry libgazebo_gra
 
 import math
 import os
+import subprocess
 import sys
 
 import actionlib
@@ -27,7 +28,6 @@ from rostest_util import SpawningTestCase, sim_wait, spawn_urdf  # noqa: E402
 
 from arm1.goal.pick_place import HOLD_S, LIFT_RISE, OBJECTS, judge_hold, pick_lift  # noqa: E402
 from arm1.ros.common.packages import find_package  # noqa: E402
-from arm1.ros.tools.xacro_bridge import expand  # noqa: E402
 
 SPACING = 0.4  # m between the arms along y (the table in pick_rows.world is long enough)
 REACH_X = 0.3  # where an arm:=false pick_arm's fingers are
@@ -48,9 +48,18 @@ class Arm:
         self.y = index * SPACING
         ns = '/' + self.name
         path = os.path.join(find_package('arm1'), 'test/robots/pick_arm')
-        xml = expand(
-            os.path.join(path, 'urdf/pick_arm.urdf.xacro'),
-            {'arm': 'false', 'fingers': fingers, 'ns': ns, 'grasp_plugin': str(grasp_plugin)},
+        # The xacro command a launch file's $(find xacro)/xacro runs (PyPI's xacro lives in
+        # the workspace's venv, not necessarily in this node's interpreter).
+        xml = subprocess.check_output(
+            [
+                os.path.join(find_package('xacro'), 'xacro'),
+                os.path.join(path, 'urdf/pick_arm.urdf.xacro'),
+                'arm:=false',
+                'fingers:=' + fingers,
+                'ns:=' + ns,
+                'grasp_plugin:=%s' % str(bool(grasp_plugin)).lower(),
+            ],
+            text=True,
         )
         rospy.set_param(ns + '/robot_description', xml)
         import yaml
