@@ -133,10 +133,8 @@ class GazeboRosCamera:
                 if kind == 'image':
                     for viewer in list(self.viewers):
                         viewer(stamp_ns, data)
-                    if self._image_pub.get_num_connections() > 0:
-                        self.publish_image(stamp_ns, data)
-                    else:
-                        self.publish_info(stamp_ns)
+                    # always: a depth camera's override publishes its depth and points here
+                    self.publish_image(stamp_ns, data)
                 else:
                     self.publish_info(stamp_ns)
             except rospy.ROSException:  # the topic closed: shut down, or the model deleted
