@@ -24,7 +24,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import SpawningTestCase, sim_wait, spawn_urdf  # noqa: E402
+from rostest_util import Recorder, SpawningTestCase, sim_wait, spawn_urdf  # noqa: E402
 
 from arm1.goal.pick_place import HOLD_S, LIFT_RISE, OBJECTS, judge_hold, pick_lift  # noqa: E402
 from arm1.ros.common.packages import find_package  # noqa: E402
@@ -137,7 +137,22 @@ class Pick(SpawningTestCase):
         cls.fingers = rospy.get_param('~fingers', 'effort')
         cls.tries = rospy.get_param('~tries', 10)
         grasp_plugin = rospy.get_param('~grasp_plugin', False)
+        cls.events = None
+        if grasp_plugin:
+            from gazebo_grasp_plugin_ros.msg import GazeboGraspEvent
+
+            cls.events = Recorder('/gazebo/grasp_events', GazeboGraspEvent)
         cls.arms = [Arm(i, o, cls.fingers, grasp_plugin) for i, o in enumerate(OBJECTS)]
+
+    def check_events(self, k, attached, failures):
+        """With the grasp plugin: each object's last event says attached (held) or not."""
+        for arm in self.arms:
+            mine = [e for e in self.events.since(0) if e.object.startswith(arm.obj.name + '::')]
+            if not mine or mine[-1].attached != attached:
+                failures.append(
+                    'try %d %s: no %s event from the grasp plugin'
+                    % (k, arm.obj.name, 'attach' if attached else 'detach')
+                )
 
     def test_objects_are_held_through_the_hold_and_fall_when_released(self):
         failures, lines = [], []
@@ -171,9 +186,14 @@ class Pick(SpawningTestCase):
                 lines.append('try %d %s: %s' % (k, arm.obj.name, verdict))
                 if not verdict.held:
                     failures.append(lines[-1])
+            if self.events is not None:
+                self.check_events(k, True, failures)
             for arm in self.arms:
                 arm.grip(OPEN)
             sim_wait(0.8)
+            if self.events is not None:
+                sim_wait(1.0)  # the plugin lets go as its grip counter runs down
+                self.check_events(k, False, failures)
             for arm, a in zip(self.arms, after):
                 z = heights(arm)[1]
                 if z > a[1] - 0.5 * LIFT_RISE:
@@ -181,6 +201,8 @@ class Pick(SpawningTestCase):
                         'try %d %s: still at z %.3f after the gripper opened' % (k, arm.obj.name, z)
                     )
         rospy.loginfo('\n'.join(lines))
+        if self.events is not None:
+            print('grasp events: %d' % len(self.events.since(0)))
         print('\n'.join(lines))
         self.assertEqual(failures, [], '\n'.join(failures))
 
