@@ -1,6 +1,7 @@
 """The pybullet world: physics settings, static scenery, robots, stepping and reset."""
 
 import logging
+import math
 import os
 
 import pybullet as p
@@ -55,7 +56,7 @@ class World:
         bodies = []
         for s in model.shapes:
             if s.kind == 'plane':
-                col = p.createCollisionShape(p.GEOM_PLANE, planeNormal=s.size, physicsClientId=cid)
+                col = _ground_shape(s.size, cid)
                 vis = p.createVisualShape(
                     p.GEOM_BOX, halfExtents=(50, 50, 0.0005), rgbaColor=s.color, physicsClientId=cid
                 )
@@ -142,6 +143,33 @@ class World:
     def close(self):
         if p.isConnected(self.client):
             p.disconnect(self.client)
+
+
+GROUND_HALF_SIZE = 500.0  # m: the ground's reach from its origin (Gazebo's plane is infinite)
+GROUND_HALF_DEPTH = 0.5  # m: deep enough that nothing falling onto it passes through
+
+
+def _ground_shape(normal, client):
+    """A plane as a thick box whose top face is the plane: pybullet gives a plane an infinite
+    bounding box, so every child hull of every compound (a concave mesh's triangles) is tested
+    against it each step; a box's finite bounds leave those above the ground out."""
+    n = [float(v) for v in normal]
+    axis = (-n[1], n[0], 0.0)  # z turned onto the normal
+    norm = sum(v * v for v in n) ** 0.5
+    angle = math.acos(max(-1.0, min(1.0, n[2] / norm)))
+    turn = (
+        p.getQuaternionFromAxisAngle(axis, angle)
+        if abs(axis[0]) + abs(axis[1]) > 1e-12
+        else p.getQuaternionFromEuler((math.pi if n[2] < 0 else 0.0, 0, 0))
+    )
+    offset, _ = p.multiplyTransforms((0, 0, 0), turn, (0, 0, -GROUND_HALF_DEPTH), (0, 0, 0, 1))
+    return p.createCollisionShape(
+        p.GEOM_BOX,
+        halfExtents=(GROUND_HALF_SIZE, GROUND_HALF_SIZE, GROUND_HALF_DEPTH),
+        collisionFramePosition=offset,
+        collisionFrameOrientation=turn,
+        physicsClientId=client,
+    )
 
 
 def _bodies(client):
