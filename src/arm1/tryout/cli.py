@@ -18,7 +18,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from typing import Any, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional
 
 from arm1.description import safe_xml
 from arm1.session.launcher import RosSession, loopback_env
@@ -122,13 +122,20 @@ def find_launch(packages: List[workspace.Package], package: str, launch: str) ->
     return None
 
 
-def run(a: argparse.Namespace) -> Dict[str, Any]:
+# What a tool built on try_robot does once the bringup's controllers are up (try_grasp's
+# pick); its dict goes into the report under 'work'.
+Work = Callable[[Progress], Dict[str, Any]]
+
+
+def run(
+    a: argparse.Namespace, work: Optional[Work] = None, tool: str = 'try_robot'
+) -> Dict[str, Any]:
     progress = Progress()
     stamp = datetime.datetime.now(datetime.timezone.utc)
-    out = os.path.abspath(a.out or 'try_robot_%s_%s' % (a.package, stamp.strftime('%Y%m%dT%H%M%S')))
+    out = os.path.abspath(a.out or '%s_%s_%s' % (tool, a.package, stamp.strftime('%Y%m%dT%H%M%S')))
     os.makedirs(out, exist_ok=True)
     rep: Dict[str, Any] = {
-        'tool': 'arm1 try_robot',
+        'tool': 'arm1 ' + tool,
         'date': stamp.isoformat(timespec='seconds'),
         'launch': {'package': a.package, 'file': a.launch, 'args': list(a.args)},
         'checkouts': [workspace.checkout_info(c) for c in [a.checkout, *a.also]],
@@ -184,11 +191,11 @@ def run(a: argparse.Namespace) -> Dict[str, Any]:
             progress('build FAILED (%s); running from the sources instead' % built.log)
             env = workspace.workspace_env(None, packages)
     try:
-        rep.update(bringup(a, env, args, out, progress))
+        rep.update(bringup(a, env, args, out, progress, work))
     finally:
         if not a.workspace and not a.keep:
             shutil.rmtree(ws, ignore_errors=True)
-    rep['verdict'] = report.verdict(rep)
+    rep['verdict'] = report.verdict(rep) if work is None else report.work_verdict(rep)
     with open(os.path.join(out, 'report.json'), 'w') as f:
         json.dump(rep, f, indent=2, default=str)
     text = report.text(rep)
@@ -199,7 +206,12 @@ def run(a: argparse.Namespace) -> Dict[str, Any]:
 
 
 def bringup(
-    a: argparse.Namespace, ws_env: Dict[str, str], args: List[str], out: str, progress: Progress
+    a: argparse.Namespace,
+    ws_env: Dict[str, str],
+    args: List[str],
+    out: str,
+    progress: Progress,
+    work: Optional[Work] = None,
 ) -> Dict[str, Any]:
     """Launch on a private loopback master, probe, stop; the bringup's part of the report."""
     from arm1.tryout import probe
@@ -278,6 +290,11 @@ def bringup(
             a.controllers_timeout, 4.0, progress, lambda: probe.node_alive('/gazebo')
         )
         res['controller_managers'] = managers
+        if work is not None:
+            res['work'] = work(progress)
+            res['bringup']['alive'] = proc.poll() is None
+            res['bringup']['world_alive'] = probe.node_alive('/gazebo')
+            return res
         res['models'] = probe.models()
         res['gazebo_topics'] = probe.gazebo_topics()
         descs = {}

@@ -39,6 +39,21 @@ def verdict(rep: Dict[str, Any]) -> Dict[str, Any]:
     return {'ok': not why, 'problems': why}
 
 
+def work_verdict(rep: Dict[str, Any]) -> Dict[str, Any]:
+    """A tool's own verdict (rep['work']['ok'], its 'problems'), after the bringup's."""
+    why: List[str] = []
+    up = rep.get('bringup', {})
+    if not up.get('up'):
+        why.append('the bringup did not come up: %s' % up.get('error'))
+    elif not up.get('world_alive', True):
+        why.append('the world /gazebo died (see the warnings and roslaunch lines)')
+    work = rep.get('work') or {}
+    why += [str(p) for p in work.get('problems', [])]
+    if up.get('up') and not work.get('ok'):
+        why.append(str(work.get('summary', 'the tool did not finish')))
+    return {'ok': not why, 'problems': why}
+
+
 def _motion_line(m: Dict[str, Any]) -> str:
     if 'error' in m:
         return 'error: %s' % m['error']
@@ -139,6 +154,8 @@ def text(rep: Dict[str, Any]) -> str:
             'motion     %s %s: %s'
             % ('ok  ' if m.get('ok') else 'FAIL', m.get('controller'), _motion_line(m))
         )
+    for line in (rep.get('work') or {}).get('lines', []):
+        add('work       %s' % line)
     warnings = rep.get('warnings') or []
     add('warnings   %d distinct WARN/ERROR/FATAL messages in rosout.log' % len(warnings))
     for w in warnings[:MAX_WARNINGS_SHOWN]:

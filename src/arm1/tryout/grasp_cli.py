@@ -1,0 +1,56 @@
+"""rosrun arm1 try_grasp: a vendor gripper picks a box on the stand-in, its package unchanged.
+
+    rosrun arm1 try_grasp omx ~/src/open_manipulator_simulations \\
+        --also ~/src/open_manipulator open_manipulator_gazebo open_manipulator_gazebo.launch
+    rosrun arm1 try_grasp jaco ~/src/kinova-ros kinova_gazebo robot_launch.launch
+
+Builds and brings the robot up as try_robot does, then per try: a box between the open fingers
+(on a thin static column), the gripper closed and the arm lifted through the package's own
+controllers, a 5 s hold, rise and slip judged (>= 40 mm, >= 95 % of the gripper's rise,
+<= 2 mm slip). Exit status 0 when every try lifted.
+"""
+
+import argparse
+import sys
+from typing import List, Optional
+
+from arm1.tryout import cli, grasp
+
+
+def parse_args(argv: Optional[List[str]]) -> argparse.Namespace:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or argv[0] not in grasp.GRIPPERS:
+        raise SystemExit(
+            'try_grasp: the first argument names the robot: %s' % ', '.join(grasp.GRIPPERS)
+        )
+    robot, rest = argv[0], argv[1:]
+    own = argparse.ArgumentParser(add_help=False)
+    own.add_argument('--tries', type=int, default=3)
+    own.add_argument('--size', type=float, help='box edge (m); 0.03 for omx, 0.04 for jaco')
+    own.add_argument('--mass', type=float, default=0.03, help='box mass (kg)')
+    own.add_argument('--mu', type=float, default=1.0, help="box's <mu1>/<mu2>")
+    own.add_argument(
+        '--offset', type=float, nargs=3, help="box from the fingers' centroid (palm frame, m)"
+    )
+    mine, rest = own.parse_known_args(rest)
+    a = cli.parse_args(rest)
+    for k, v in vars(mine).items():
+        setattr(a, k, v)
+    a.robot = robot
+    return a
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    a = parse_args(argv)
+    g = grasp.GRIPPERS[a.robot]
+
+    def work(progress: cli.Progress) -> dict:
+        from arm1.tryout import grasp_ros
+
+        return grasp_ros.tries(g, a, progress)
+
+    rep = cli.run(a, work, tool='try_grasp')
+    from arm1.tryout import report
+
+    sys.stdout.write(report.text(rep))
+    return 0 if rep['verdict']['ok'] else 1

@@ -1,0 +1,172 @@
+"""try_grasp's tries over ROS, in the try_robot process once the bringup's controllers run:
+place a box between the open fingers (from /gazebo/get_link_state), close the gripper and lift
+the arm through the package's own controllers, hold, judge (grasp.judge_lift)."""
+
+import argparse
+from typing import Any, Callable, Dict, List, Optional
+
+import rospy
+
+from arm1.tryout import grasp
+
+Progress = Callable[[str], None]
+BOX = 'try_grasp_box'
+PEDESTAL = 'try_grasp_pedestal'
+
+
+class Arm:
+    """The arm and gripper through the package's own interface."""
+
+    def __init__(self, g: grasp.Gripper, timeout: float) -> None:
+        self.g = g
+        if g.kind == 'topics':
+            from std_msgs.msg import Float64
+
+            self.msg = Float64
+            self.gripper = rospy.Publisher(g.gripper_topic, Float64, queue_size=1, latch=True)
+            self.joints = [
+                rospy.Publisher(t, Float64, queue_size=1, latch=True) for t in g.arm_topics
+            ]
+        else:
+            import actionlib
+            from control_msgs.msg import FollowJointTrajectoryAction
+
+            self.clients = {}
+            for ns in (g.arm_action, g.gripper_action):
+                c = actionlib.SimpleActionClient(ns, FollowJointTrajectoryAction)
+                if not c.wait_for_server(rospy.Duration(timeout)):
+                    raise RuntimeError('no FollowJointTrajectory action server at %s' % ns)
+                self.clients[ns] = c
+        rospy.sleep(0.5)  # subscribers connect
+
+    def _goal(self, ns: str, joints: tuple, positions: tuple, seconds: float) -> None:
+        from control_msgs.msg import FollowJointTrajectoryGoal
+        from trajectory_msgs.msg import JointTrajectoryPoint
+
+        goal = FollowJointTrajectoryGoal()
+        goal.trajectory.joint_names = list(joints)
+        goal.trajectory.points = [
+            JointTrajectoryPoint(
+                positions=list(positions),
+                velocities=[0.0] * len(joints),
+                time_from_start=rospy.Duration(seconds),
+            )
+        ]
+        self.clients[ns].send_goal(goal)
+
+    def grip(self, positions: tuple, seconds: float) -> None:
+        if self.g.kind == 'topics':
+            self.gripper.publish(self.msg(positions[0]))
+        else:
+            self._goal(self.g.gripper_action, self.g.finger_joints, positions, seconds)
+        rospy.sleep(seconds + 0.5)
+
+    def move(self, frm: tuple, to: tuple, seconds: float) -> None:
+        if self.g.kind == 'topics':
+            # a ramp of position commands (the controllers jump to each; small steps carry)
+            n = max(1, int(seconds / 0.02))
+            for k in range(1, n + 1):
+                for pub, a, b in zip(self.joints, frm, to):
+                    pub.publish(self.msg(a + (b - a) * k / n))
+                rospy.sleep(seconds / n)
+        else:
+            self._goal(self.g.arm_action, self.g.arm_joints, to, seconds)
+            self.clients[self.g.arm_action].wait_for_result(rospy.Duration(seconds + 5.0))
+        rospy.sleep(0.5)
+
+
+class Gazebo:
+    def __init__(self, timeout: float) -> None:
+        from gazebo_msgs.srv import DeleteModel, GetLinkState, SpawnModel
+
+        for s in ('get_link_state', 'spawn_urdf_model', 'spawn_sdf_model', 'delete_model'):
+            rospy.wait_for_service('/gazebo/' + s, timeout)
+        self.link_state = rospy.ServiceProxy('/gazebo/get_link_state', GetLinkState)
+        self.spawn_urdf = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
+        self.spawn_sdf = rospy.ServiceProxy('/gazebo/spawn_sdf_model', SpawnModel)
+        self.delete = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)
+
+    def pose(self, link: str) -> tuple:
+        r = self.link_state(link, 'world')
+        if not r.success:
+            raise RuntimeError('get_link_state %s: %s' % (link, r.status_message))
+        p, q = r.link_state.pose.position, r.link_state.pose.orientation
+        return (p.x, p.y, p.z), (q.x, q.y, q.z, q.w)
+
+    def remove(self, name: str) -> None:
+        try:
+            self.delete(name)
+        except rospy.ServiceException:
+            pass
+
+
+def one_try(
+    g: grasp.Gripper, arm: Arm, gz: Gazebo, a: argparse.Namespace, log: Progress
+) -> Dict[str, Any]:
+    from geometry_msgs.msg import Point, Pose, Quaternion
+
+    gz.remove(BOX)
+    gz.remove(PEDESTAL)
+    arm.grip(g.open_position, 1.5)
+    arm.move(g.start, g.start, 2.0)  # reset: the start pose, fingers open
+    fingers = [gz.pose('%s::%s' % (g.model, link))[0] for link in g.finger_links]
+    _, palm_q = gz.pose('%s::%s' % (g.model, g.palm_link))
+    centre, q = grasp.box_pose(fingers, palm_q, tuple(a.offset) if a.offset else g.offset)
+    size = a.size or g.box_size
+    bottom = centre[2] - size / 2
+    if bottom > 0.002:
+        pose = Pose(Point(centre[0], centre[1], bottom - 0.001), Quaternion(0, 0, 0, 1))
+        r = gz.spawn_sdf(
+            PEDESTAL, grasp.pedestal_sdf(PEDESTAL, size / 3, bottom - 0.001), '', pose, 'world'
+        )
+        if not r.success:
+            raise RuntimeError('pedestal not spawned: %s' % r.status_message)
+    pose = Pose(Point(*centre), Quaternion(*q))
+    r = gz.spawn_urdf(BOX, grasp.box_urdf(BOX, size, a.mass, a.mu), '', pose, 'world')
+    if not r.success:
+        raise RuntimeError('box not spawned: %s' % r.status_message)
+    log('  box %.0f mm at (%.3f, %.3f, %.3f)' % (size * 1e3, *centre))
+    rospy.sleep(0.3)
+    arm.grip(g.closed_position, 1.5)
+    palm = '%s::%s' % (g.model, g.palm_link)
+    box = BOX + '::link'
+    palm_before, box_before = gz.pose(palm)[0], gz.pose(box)[0]
+    arm.move(g.start, g.lifted(), 2.0)
+    samples: List[tuple] = []
+    end = rospy.get_time() + grasp.HOLD_S
+    while rospy.get_time() < end:
+        pp, pq = gz.pose(palm)
+        samples.append(grasp.to_frame(pp, pq, gz.pose(box)[0]))
+        rospy.sleep(0.1)
+    v = grasp.judge_lift(palm_before, box_before, gz.pose(palm)[0], gz.pose(box)[0], samples)
+    arm.grip(g.open_position, 1.0)
+    arm.move(g.lifted(), g.start, 2.0)
+    gz.remove(BOX)
+    gz.remove(PEDESTAL)
+    return dict(v.as_dict(), text=str(v))
+
+
+def tries(g: grasp.Gripper, a: argparse.Namespace, log: Progress) -> Dict[str, Any]:
+    res: Dict[str, Any] = {'robot': g.name, 'tries': [], 'problems': []}
+    try:
+        gz = Gazebo(30.0)
+        arm = Arm(g, 30.0)
+    except Exception as e:
+        res['problems'].append(str(e))
+        res['ok'] = False
+        return res
+    for k in range(a.tries):
+        log('try %d of %d' % (k + 1, a.tries))
+        t: Optional[Dict[str, Any]]
+        try:
+            t = one_try(g, arm, gz, a, log)
+        except Exception as e:
+            t = {'ok': False, 'text': 'ERROR: %s' % e}
+        log('  ' + t['text'])
+        res['tries'].append(t)
+    ok = sum(1 for t in res['tries'] if t.get('ok'))
+    res['summary'] = '%s: %d of %d lifted' % (g.name, ok, a.tries)
+    res['ok'] = ok == a.tries
+    res['lines'] = ['try %d: %s' % (i + 1, t['text']) for i, t in enumerate(res['tries'])]
+    res['lines'].append(res['summary'])
+    return res
