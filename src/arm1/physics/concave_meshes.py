@@ -28,7 +28,7 @@ import re
 import tempfile
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
-from typing import List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 import pybullet as p
@@ -43,7 +43,10 @@ MARGIN = 0.001  # pybullet's collision margin of a URDF mesh's hulls (gUrdfDefau
 SHRINK = MARGIN / 2  # each triangle moved inward by this: rays and contacts both off by half
 CONCAVE_DEPTH = 0.0005  # m: a hull standing out less than this from the faces counts as convex
 THICKNESS = 0.002  # m: how deep each triangle's prism reaches into the body
-VERSION = 1  # of the cached files' format; a change makes new ones
+TOLERANCE = 0.0002  # m: how far a patch's vertex may stand in front of its own planes
+PATCH_CONE = 0.5  # cos 60 degrees: the most a patch's triangle may turn from its seed's
+WELD = 1e-7  # m: corners closer than this are one vertex
+VERSION = 2  # of the cached files' format; a change makes new ones (2: convex patches)
 CHUNK = 1 << 22  # face x hull-vertex products per numpy batch of the concavity check
 
 
@@ -182,32 +185,163 @@ def concavity(
     return depth
 
 
-# --------------------------------------------------------------------- triangle hulls
-def write_triangle_hulls(triangles: np.ndarray, path: str) -> None:
-    """One .obj object per triangle: a prism from the triangle moved inward by SHRINK to
-    THICKNESS deeper (metres: already scaled)."""
+# ----------------------------------------------------------------------- convex patches
+Edge = Tuple[int, int]
+
+
+def _weld(triangles: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """(n, 3) vertex ids and their points: corners closer than WELD are one vertex (an STL
+    repeats each corner in every triangle)."""
+    keys = np.round(triangles.reshape(-1, 3) / WELD).astype(np.int64)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    return inverse.reshape(-1, 3), triangles.reshape(-1, 3)[first]
+
+
+def _edges(corners: np.ndarray) -> List[Edge]:
+    a, b, c = (int(v) for v in corners)
+    return [(a, b), (b, c), (c, a)]
+
+
+class _Patch:
+    """Edge-adjacent triangles growing into one convex piece of surface. A triangle joins
+    while, within TOLERANCE, every vertex stays behind every triangle's plane (convex), no
+    deeper than THICKNESS below any of them (a thin piece, as each prism), and behind every
+    boundary edge's side plane (its outline convex, no hole): the hull of its vertices then
+    is its surface and nothing beside it."""
+
+    def __init__(self, seed: int, ids: np.ndarray, points: np.ndarray, normals: np.ndarray) -> None:
+        self.ids, self.points, self.normals = ids, points, normals
+        self.offsets = np.einsum('ij,ij->i', normals, points[ids[:, 0]])
+        self.seed = seed
+        self.members = [seed]
+        self.vertices = set(int(v) for v in ids[seed])
+        self.boundary = self._sides(seed)  # directed edge -> (outward side normal, offset)
+
+    def _sides(self, t: int) -> Dict[Edge, Tuple[np.ndarray, float]]:
+        out = {}
+        for a, b in _edges(self.ids[t]):
+            side = np.cross(self.points[b] - self.points[a], self.normals[t])
+            side /= np.linalg.norm(side)
+            out[(a, b)] = (side, float(side @ self.points[a]))
+        return out
+
+    @staticmethod
+    def _behind(points: np.ndarray, planes: np.ndarray, offsets: np.ndarray) -> bool:
+        heights = points @ planes.T - offsets
+        return bool(heights.max() <= TOLERANCE and heights.min() >= -THICKNESS)
+
+    def _outline_convex(
+        self, points: np.ndarray, sides: Dict[Edge, Tuple[np.ndarray, float]]
+    ) -> bool:
+        if not sides:
+            return True
+        planes = np.array([s for s, _ in sides.values()])
+        offsets = np.array([d for _, d in sides.values()])
+        return bool((points @ planes.T - offsets).max() <= TOLERANCE)
+
+    def join(self, t: int) -> bool:
+        """Adds triangle t when the patch stays convex with it; False leaves it unchanged."""
+        if self.normals[t] @ self.normals[self.seed] < PATCH_CONE:
+            return False  # a triangle wound the other way, or a turn too sharp for one piece
+        corners = [int(v) for v in self.ids[t]]
+        new = [v for v in corners if v not in self.vertices]
+        every = self.points[sorted(self.vertices.union(corners))]
+        if not self._behind(every, self.normals[t : t + 1], self.offsets[t : t + 1]):
+            return False
+        if new and not self._behind(
+            self.points[new], self.normals[self.members], self.offsets[self.members]
+        ):
+            return False
+        kept = dict(self.boundary)
+        added = {}
+        for edge, side in self._sides(t).items():
+            if (edge[1], edge[0]) in kept:
+                del kept[(edge[1], edge[0])]  # the shared edge is inside the patch now
+            else:
+                added[edge] = side
+        if len(added) == 3:
+            return False  # shares no edge with the patch
+        if not self._outline_convex(every, added):
+            return False
+        if new and not self._outline_convex(self.points[new], kept):
+            return False
+        self.boundary = {**kept, **added}
+        self.vertices.update(corners)
+        self.members.append(t)
+        return True
+
+
+def convex_patches(triangles: np.ndarray, normals: np.ndarray) -> List[List[int]]:
+    """The triangles (wound outward, with their unit ``normals``) grouped into convex
+    patches of edge-adjacent triangles, largest triangles first: each list one patch's
+    triangle indices. A flat CAD face of many triangles becomes one patch."""
+    ids, points = _weld(triangles)
+    by_edge: Dict[Edge, List[int]] = {}
+    for t in range(len(triangles)):
+        for a, b in _edges(ids[t]):
+            by_edge.setdefault((min(a, b), max(a, b)), []).append(t)
+    area = np.linalg.norm(
+        np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1
+    )
+    placed = np.zeros(len(triangles), dtype=bool)
+    patches = []
+    for seed in np.argsort(-area, kind='stable'):
+        if placed[seed]:
+            continue
+        patch = _Patch(int(seed), ids, points, normals)
+        placed[seed] = True
+        frontier = [int(seed)]
+        while frontier:
+            for a, b in _edges(ids[frontier.pop()]):
+                for u in by_edge[(min(a, b), max(a, b))]:
+                    if not placed[u] and patch.join(u):
+                        placed[u] = True
+                        frontier.append(u)
+        patches.append(patch.members)
+    return patches
+
+
+def write_patch_hulls(triangles: np.ndarray, path: str) -> int:
+    """One .obj object per convex patch: a prism from the patch moved inward by SHRINK to
+    THICKNESS deeper, along the patch's mean normal (metres: already scaled). Returns the
+    number of objects (pieces) written."""
+    if _outward(triangles) < 0:
+        triangles = triangles[:, ::-1]  # wound outward from here on
     n, ok = _normals(triangles)
-    inward = (-_outward(triangles) * n[ok])[:, None, :]
-    top = triangles[ok] + SHRINK * inward
-    bottom = top + THICKNESS * inward
+    triangles, n = triangles[ok], n[ok]
+    ids, points = _weld(triangles)
     lines = []
-    for i, (a, b) in enumerate(zip(top, bottom)):
-        lines.append('o t%d\n' % i)
-        lines.extend('v %.9g %.9g %.9g\n' % tuple(v) for v in np.concatenate([a, b]))
-        k = 6 * i
-        # a closed prism: both ends and three sides (pybullet takes the hull of its vertices)
-        faces = (
-            (1, 2, 3),
-            (4, 6, 5),
-            (1, 4, 5),
-            (1, 5, 2),
-            (2, 5, 6),
-            (2, 6, 3),
-            (3, 6, 4),
-            (3, 4, 1),
+    base = 1
+    patches = convex_patches(triangles, n)
+    for i, members in enumerate(patches):
+        corners = ids[members]
+        used, local = np.unique(corners, return_inverse=True)
+        local = local.reshape(-1, 3)
+        area = np.linalg.norm(
+            np.cross(
+                triangles[members, 1] - triangles[members, 0],
+                triangles[members, 2] - triangles[members, 0],
+            ),
+            axis=1,
         )
-        lines.extend('f %d %d %d\n' % (k + x, k + y, k + z) for x, y, z in faces)
+        mean = (n[members] * area[:, None]).sum(axis=0)
+        inward = -mean / np.linalg.norm(mean)
+        top = points[used] + SHRINK * inward
+        bottom = top + THICKNESS * inward
+        m = len(used)
+        lines.append('o p%d\n' % i)
+        lines.extend('v %.9g %.9g %.9g\n' % tuple(v) for v in np.concatenate([top, bottom]))
+        # a closed prism: the patch, its copy below, and a wall under each boundary edge
+        # (pybullet takes the hull of the vertices its faces name)
+        faces = [tuple(f) for f in local] + [(c + m, b + m, a + m) for a, b, c in local]
+        directed = {e for f in local for e in _edges(f)}
+        for a, b in sorted(directed):
+            if (b, a) not in directed:
+                faces += [(b, a, a + m), (b, a + m, b + m)]
+        lines.extend('f %d %d %d\n' % (base + x, base + y, base + z) for x, y, z in faces)
+        base += 2 * m
     _atomic_write(path, ''.join(lines))
+    return len(patches)
 
 
 def _atomic_write(path: str, text: str) -> None:
@@ -267,7 +401,7 @@ def collision_mesh(
     depth = concavity(triangles, stop_above=CONCAVE_DEPTH)
     concave = depth > CONCAVE_DEPTH
     if concave:
-        write_triangle_hulls(triangles, hulls_path)
+        write_patch_hulls(triangles, hulls_path)
     _atomic_write(info_path, json.dumps({'concave': bool(concave), 'depth': depth, 'mesh': path}))
     return CollisionMesh(hulls_path if concave else None, depth, False)
 
