@@ -184,3 +184,69 @@ def test_the_slot_of_a_u_on_a_moving_link_is_seen_within_a_millimetre(tmp_path, 
         assert abs(bottom - (z0 + T)) < 0.001
     finally:
         sim.close()
+
+
+def _grid(origin, u, v, k):
+    """A parallelogram face from origin along u and v, as k x k quads (2 k^2 triangles)."""
+    o, u, v = (np.asarray(x, dtype=float) for x in (origin, u, v))
+    corner = [[o + u * i / k + v * j / k for j in range(k + 1)] for i in range(k + 1)]
+    return [
+        t
+        for i in range(k)
+        for j in range(k)
+        for t in _quad(corner[i][j], corner[i + 1][j], corner[i + 1][j + 1], corner[i][j + 1])
+    ]
+
+
+def l_triangles(k=6):
+    """An L 40 x 40 mm, 10 mm thick, 20 mm deep, every rectangle of it a k x k grid: its
+    6 outline faces and the two L faces, each made of two rectangles (a 40 x 10 foot and a
+    10 x 30 upright, their grids meeting without shared vertices)."""
+    outline = [(0, 0), (W, 0), (W, T), (T, T), (T, W), (0, W)]
+    tris = []
+    for i, (x0, z0) in enumerate(outline):
+        x1, z1 = outline[(i + 1) % len(outline)]
+        tris += _grid((x0, 0, z0), (0, D, 0), (x1 - x0, 0, z1 - z0), k)
+    for (x0, z0), (x1, z1) in (((0, 0), (W, T)), ((0, T), (T, W))):
+        tris += _grid((x0, 0, z0), (x1 - x0, 0, 0), (0, 0, z1 - z0), k)
+        tris += _grid((x0, D, z0), (0, 0, z1 - z0), (x1 - x0, 0, 0), k)
+    tris = np.array(tris, dtype=float)
+    volume = np.einsum('ij,ij->i', tris[:, 0], np.cross(tris[:, 1], tris[:, 2])).sum() / 6
+    assert volume == pytest.approx((W * T + T * (W - T)) * D)  # closed and outward
+    return tris
+
+
+def test_flat_faces_of_many_triangles_become_one_piece_each(tmp_path, monkeypatch):
+    # 6 outline faces + 2 L faces, 576 triangles: each outline face is one piece; each L
+    # face (not convex) two, its foot and its upright; never one piece over the notch
+    tris = l_triangles()
+    path = str(tmp_path / 'l.stl')
+    write_binary_stl(path, tris)
+    made = collision_mesh(path, (1, 1, 1), str(tmp_path / 'cache'))
+    assert made.path is not None
+    with open(made.path) as f:
+        assert sum(line.startswith('o ') for line in f) == 6 + 2 * 2
+    # rays into the notch, 3 mm or more from its faces, find the upright's inner face
+    # (x = T) and the foot's top (z = T) within a millimetre: no piece fills the notch
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'cache2'))
+    sim = Simulation(WorldConfig())
+    try:
+        z0 = 0.1
+        model = sim.spawn_urdf('l', u_robot(path, z0))
+        cid, y = sim.world.client, D / 2
+        ts = np.linspace(T + 0.003, W - 0.003, 12)
+        hits = p.rayTestBatch(
+            [(W + 0.05, y, z0 + z) for z in ts],
+            [(-0.05, y, z0 + z) for z in ts],
+            physicsClientId=cid,
+        )
+        assert all(h[0] == model.robot.body for h in hits)
+        assert max(abs(h[3][0] - T) for h in hits) < 0.001
+        hits = p.rayTestBatch(
+            [(x, y, z0 + W + 0.05) for x in ts],
+            [(x, y, z0 - 0.05) for x in ts],
+            physicsClientId=cid,
+        )
+        assert max(abs(h[3][2] - (z0 + T)) for h in hits) < 0.001
+    finally:
+        sim.close()

@@ -45,6 +45,7 @@ CONCAVE_DEPTH = 0.0005  # m: a hull standing out less than this from the faces c
 THICKNESS = 0.002  # m: how deep each triangle's prism reaches into the body
 TOLERANCE = 0.0002  # m: how far a patch's vertex may stand in front of its own planes
 PATCH_CONE = 0.5  # cos 60 degrees: the most a patch's triangle may turn from its seed's
+FLAT_COS = 0.9999  # normals this close (under ~0.8 degrees) may be one flat face
 WELD = 1e-7  # m: corners closer than this are one vertex
 VERSION = 2  # of the cached files' format; a change makes new ones (2: convex patches)
 CHUNK = 1 << 22  # face x hull-vertex products per numpy batch of the concavity check
@@ -202,101 +203,155 @@ def _edges(corners: np.ndarray) -> List[Edge]:
     return [(a, b), (b, c), (c, a)]
 
 
-class _Patch:
-    """Edge-adjacent triangles growing into one convex piece of surface. A triangle joins
-    while, within TOLERANCE, every vertex stays behind every triangle's plane (convex), no
-    deeper than THICKNESS below any of them (a thin piece, as each prism), and behind every
-    boundary edge's side plane (its outline convex, no hole): the hull of its vertices then
-    is its surface and nothing beside it."""
+Sides = Dict[Edge, Tuple[np.ndarray, float]]
 
-    def __init__(self, seed: int, ids: np.ndarray, points: np.ndarray, normals: np.ndarray) -> None:
-        self.ids, self.points, self.normals = ids, points, normals
-        self.offsets = np.einsum('ij,ij->i', normals, points[ids[:, 0]])
-        self.seed = seed
-        self.members = [seed]
-        self.vertices = set(int(v) for v in ids[seed])
-        self.boundary = self._sides(seed)  # directed edge -> (outward side normal, offset)
 
-    def _sides(self, t: int) -> Dict[Edge, Tuple[np.ndarray, float]]:
+class _Surface:
+    """The welded triangles with their planes, edges and convex flat faces."""
+
+    def __init__(self, triangles: np.ndarray, normals: np.ndarray) -> None:
+        self.ids, self.points = _weld(triangles)
+        self.normals = normals
+        self.offsets = np.einsum('ij,ij->i', normals, self.points[self.ids[:, 0]])
+        self.by_edge: Dict[Edge, List[int]] = {}
+        for t in range(len(triangles)):
+            for a, b in _edges(self.ids[t]):
+                self.by_edge.setdefault((min(a, b), max(a, b)), []).append(t)
+
+    def neighbours(self, members: Sequence[int]) -> List[int]:
+        return [
+            u
+            for t in members
+            for a, b in _edges(self.ids[t])
+            for u in self.by_edge[(min(a, b), max(a, b))]
+        ]
+
+    def outline(self, members: Sequence[int]) -> Sides:
+        """Each boundary edge (wound as its triangle) of these triangles, with its side
+        plane: through the edge, along its triangle's normal, facing out of the patch."""
+        directed = {e: t for t in members for e in _edges(self.ids[t])}
         out = {}
-        for a, b in _edges(self.ids[t]):
-            side = np.cross(self.points[b] - self.points[a], self.normals[t])
-            side /= np.linalg.norm(side)
-            out[(a, b)] = (side, float(side @ self.points[a]))
+        for (a, b), t in directed.items():
+            if (b, a) not in directed:
+                side = np.cross(self.points[b] - self.points[a], self.normals[t])
+                side /= np.linalg.norm(side)
+                out[(a, b)] = (side, float(side @ self.points[a]))
         return out
 
-    @staticmethod
-    def _behind(points: np.ndarray, planes: np.ndarray, offsets: np.ndarray) -> bool:
-        heights = points @ planes.T - offsets
+    def vertices(self, members: Sequence[int]) -> np.ndarray:
+        return np.unique(self.ids[list(members)])
+
+    def units(self, order: Sequence[int]) -> List[List[int]]:
+        """Flat faces (coplanar within TOLERANCE, edge-adjacent) with a convex outline as
+        one unit each, every other triangle a unit of its own: a rectangle of many
+        triangles joins a patch whole, where triangle by triangle it would pass through
+        shapes that are not convex."""
+        placed = np.zeros(len(self.ids), dtype=bool)
+        units: List[List[int]] = []
+        for seed in order:
+            if placed[seed]:
+                continue
+            placed[seed] = True
+            face, stack = [int(seed)], [int(seed)]
+            while stack:
+                for u in self.neighbours([stack.pop()]):
+                    if placed[u] or self.normals[u] @ self.normals[seed] < FLAT_COS:
+                        continue
+                    heights = self.points[self.ids[u]] @ self.normals[seed] - self.offsets[seed]
+                    if np.abs(heights).max() <= TOLERANCE:
+                        placed[u] = True
+                        face.append(u)
+                        stack.append(u)
+            if _in_front(self.points[self.vertices(face)], self.outline(face)) <= TOLERANCE:
+                units.append(face)
+            else:
+                units.extend([t] for t in face)
+        return units
+
+
+def _in_front(points: np.ndarray, sides: Sides) -> float:
+    """How far the points stand in front of the side planes at most (-inf for none)."""
+    if not sides or not len(points):
+        return -np.inf
+    planes = np.array([s for s, _ in sides.values()])
+    offsets = np.array([d for _, d in sides.values()])
+    return float((points @ planes.T - offsets).max())
+
+
+class _Patch:
+    """Edge-adjacent units (flat faces, triangles) growing into one convex piece of
+    surface. A unit joins while, within TOLERANCE, every vertex stays behind every
+    triangle's plane (convex), no deeper than THICKNESS below any of them (a thin piece, as
+    each prism), and behind every boundary edge's side plane (its outline convex, no hole):
+    the hull of its vertices then is its surface and nothing beside it."""
+
+    def __init__(self, surface: _Surface, unit: List[int]) -> None:
+        self.surface = surface
+        self.seed_normal = surface.normals[unit[0]]
+        self.members = list(unit)
+        self.vertices = set(int(v) for v in surface.vertices(unit))
+        self.boundary = surface.outline(unit)
+
+    def _behind(self, points: np.ndarray, members: Sequence[int]) -> bool:
+        s = self.surface
+        heights = points @ s.normals[list(members)].T - s.offsets[list(members)]
         return bool(heights.max() <= TOLERANCE and heights.min() >= -THICKNESS)
 
-    def _outline_convex(
-        self, points: np.ndarray, sides: Dict[Edge, Tuple[np.ndarray, float]]
-    ) -> bool:
-        if not sides:
-            return True
-        planes = np.array([s for s, _ in sides.values()])
-        offsets = np.array([d for _, d in sides.values()])
-        return bool((points @ planes.T - offsets).max() <= TOLERANCE)
-
-    def join(self, t: int) -> bool:
-        """Adds triangle t when the patch stays convex with it; False leaves it unchanged."""
-        if self.normals[t] @ self.normals[self.seed] < PATCH_CONE:
+    def join(self, unit: List[int], sides: Sides) -> bool:
+        """Adds the unit (its outline ``sides``) when the patch stays convex with it; False
+        leaves the patch unchanged."""
+        s = self.surface
+        if (s.normals[unit] @ self.seed_normal).min() < PATCH_CONE:
             return False  # a triangle wound the other way, or a turn too sharp for one piece
-        corners = [int(v) for v in self.ids[t]]
-        new = [v for v in corners if v not in self.vertices]
-        every = self.points[sorted(self.vertices.union(corners))]
-        if not self._behind(every, self.normals[t : t + 1], self.offsets[t : t + 1]):
-            return False
-        if new and not self._behind(
-            self.points[new], self.normals[self.members], self.offsets[self.members]
-        ):
+        corners = set(int(v) for v in s.vertices(unit))
+        new = s.points[sorted(corners - self.vertices)]
+        every = s.points[sorted(self.vertices | corners)]
+        if not self._behind(every, unit) or (len(new) and not self._behind(new, self.members)):
             return False
         kept = dict(self.boundary)
         added = {}
-        for edge, side in self._sides(t).items():
-            if (edge[1], edge[0]) in kept:
-                del kept[(edge[1], edge[0])]  # the shared edge is inside the patch now
+        for (a, b), side in sides.items():
+            if (b, a) in kept:
+                del kept[(b, a)]  # a shared edge is inside the patch now
             else:
-                added[edge] = side
-        if len(added) == 3:
+                added[(a, b)] = side
+        if len(added) == len(sides):
             return False  # shares no edge with the patch
-        if not self._outline_convex(every, added):
-            return False
-        if new and not self._outline_convex(self.points[new], kept):
+        if _in_front(every, added) > TOLERANCE or _in_front(new, kept) > TOLERANCE:
             return False
         self.boundary = {**kept, **added}
-        self.vertices.update(corners)
-        self.members.append(t)
+        self.vertices |= corners
+        self.members.extend(unit)
         return True
 
 
 def convex_patches(triangles: np.ndarray, normals: np.ndarray) -> List[List[int]]:
     """The triangles (wound outward, with their unit ``normals``) grouped into convex
-    patches of edge-adjacent triangles, largest triangles first: each list one patch's
-    triangle indices. A flat CAD face of many triangles becomes one patch."""
-    ids, points = _weld(triangles)
-    by_edge: Dict[Edge, List[int]] = {}
-    for t in range(len(triangles)):
-        for a, b in _edges(ids[t]):
-            by_edge.setdefault((min(a, b), max(a, b)), []).append(t)
+    patches of edge-adjacent triangles, largest first: each list one patch's triangle
+    indices. A flat CAD face of many triangles becomes one patch."""
+    surface = _Surface(triangles, normals)
     area = np.linalg.norm(
         np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1
     )
-    placed = np.zeros(len(triangles), dtype=bool)
+    units = surface.units(np.argsort(-area, kind="stable").tolist())
+    unit_of = np.empty(len(triangles), dtype=np.int64)
+    for i, unit in enumerate(units):
+        unit_of[unit] = i
+    sides = [surface.outline(unit) for unit in units]
+    placed = np.zeros(len(units), dtype=bool)
     patches = []
-    for seed in np.argsort(-area, kind='stable'):
+    for seed in np.argsort([-area[unit].sum() for unit in units], kind='stable'):
         if placed[seed]:
             continue
-        patch = _Patch(int(seed), ids, points, normals)
         placed[seed] = True
+        patch = _Patch(surface, units[seed])
         frontier = [int(seed)]
         while frontier:
-            for a, b in _edges(ids[frontier.pop()]):
-                for u in by_edge[(min(a, b), max(a, b))]:
-                    if not placed[u] and patch.join(u):
-                        placed[u] = True
-                        frontier.append(u)
+            for t in surface.neighbours(units[frontier.pop()]):
+                u = int(unit_of[t])
+                if not placed[u] and patch.join(units[u], sides[u]):
+                    placed[u] = True
+                    frontier.append(u)
         patches.append(patch.members)
     return patches
 
