@@ -8,6 +8,7 @@ import os
 import numpy as np
 import pybullet as p
 import pytest
+import state_sensor_util
 
 from arm1.description.limits import Limits
 from arm1.description.sdf_world import WorldConfig
@@ -248,5 +249,32 @@ def test_flat_faces_of_many_triangles_become_one_piece_each(tmp_path, monkeypatc
             physicsClientId=cid,
         )
         assert max(abs(h[3][2] - (z0 + T)) for h in hits) < 0.001
+    finally:
+        sim.close()
+
+
+def test_a_part_welded_to_the_world_skips_the_ground_and_still_holds_a_box(tmp_path, monkeypatch):
+    # the U welded to the world, standing on the ground: its pieces are not tested against
+    # the ground (static against static, as pybullet's fixed base), a box still rests in it
+    path = str(tmp_path / 'u.stl')
+    write_binary_stl(path, u_triangles())
+    monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'cache'))
+    urdf = u_robot(path, 0.0).replace('type="prismatic"', 'type="fixed"')
+    sim = state_sensor_util.world(ground=True)
+    try:
+        model = sim.spawn_urdf('u', urdf)
+        cid, body = sim.world.client, model.robot.body
+        box = p.createMultiBody(
+            0.01,
+            p.createCollisionShape(p.GEOM_BOX, halfExtents=(0.005,) * 3, physicsClientId=cid),
+            basePosition=(W / 2, D / 2, 0.02),
+            physicsClientId=cid,
+        )
+        for _ in range(300):
+            sim.step()
+        touching = {c[2] for c in p.getContactPoints(bodyA=body, physicsClientId=cid)}
+        assert touching == {box}
+        bottom = p.getBasePositionAndOrientation(box, physicsClientId=cid)[0][2] - 0.005
+        assert abs(bottom - T) < 0.001
     finally:
         sim.close()

@@ -9,6 +9,7 @@ from . import mimic
 IDENTITY = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 # How near its last target (m or rad) a position-driven joint counts as having reached it.
 REACHED = 1e-6
+STATIC_GROUP = 2  # Bullet's StaticFilter: the group pybullet gives static bodies (mask: all but it)
 
 
 class RobotLoadError(ValueError):
@@ -64,6 +65,8 @@ class Robot:
             info = p.getJointInfo(self.body, i, physicsClientId=client)
             self.joint_index[info[1].decode()] = i
             self.link_index[info[12].decode()] = i
+        if fixed_base:
+            self._weld_to_static(client)
         movable = [
             i
             for i in self.joint_index.values()
@@ -101,6 +104,22 @@ class Robot:
             self._apply_link_options(options, self_collide)
         self.mimics = []  # physics.mimic.MimicJoint, one per follower
         self._position_targets = {}  # move_positions' last target by joint index
+
+    def _weld_to_static(self, client):
+        """Links welded to a fixed base (fixed joints all the way to it) cannot move, as the
+        base cannot: they get the collision filter pybullet gives that base (a static body's),
+        so they skip static bodies (ground, tables) as it does; dynamic bodies and the
+        robot's other links still touch them. A concave mesh (physics/concave_meshes) is many
+        pieces: on a base standing on the ground each piece was tested against it every step
+        (arm1: twice the step's cost). A contact sensor on such a link sees no static body."""
+        welded = {-1}
+        for i in range(p.getNumJoints(self.body, physicsClientId=client)):
+            info = p.getJointInfo(self.body, i, physicsClientId=client)
+            if info[2] == p.JOINT_FIXED and info[16] in welded:  # parents come first
+                welded.add(i)
+                p.setCollisionFilterGroupMask(
+                    self.body, i, STATIC_GROUP, ~STATIC_GROUP, physicsClientId=client
+                )
 
     def _apply_link_options(self, options, self_collide):
         cid = self.client
