@@ -1,7 +1,7 @@
 """What a concave collision mesh costs (physics/concave_meshes.py): its spawn with an empty
-cache (concavity check, triangle hulls written, pybullet loading them), its spawn from the
-cache, and a physics step with a box resting on it; each next to the same mesh as pybullet's
-convex hull. The mesh is arm1's link2 (592 triangles, concave by 59 mm), on a moving link.
+cache (concavity check, convex pieces written, pybullet loading them), its spawn from the
+cache, and a physics step with a box resting on it (``box_resting``: it did, on both); each
+next to the same mesh as pybullet's convex hull, and how many pieces it became. The mesh is arm1's link2 (592 triangles, concave by 59 mm), on a moving link.
 In one process, no master needed.
 """
 
@@ -17,7 +17,7 @@ import pybullet as p
 from ..description.limits import Limits
 from ..description.sdf_world import WorldConfig
 from ..paths import repo_root
-from ..physics.concave_meshes import mesh_triangles
+from ..physics.concave_meshes import collision_mesh, mesh_triangles
 from ..sim.simulation import Simulation
 from .probes import median_ms
 
@@ -43,12 +43,31 @@ def _world(mesh: str, hull: bool, count: int) -> Dict[str, float]:
         spawn_ms = (time.perf_counter() - t) * 1000.0
         cid = sim.world.client
         low, high = p.getAABB(model.robot.body, 0, physicsClientId=cid)
+        # the box goes over the part's highest point a ray straight down finds (the middle
+        # of its bounds may be a hollow: a box dropped there misses it)
+        grid = [
+            (low[0] + (high[0] - low[0]) * i / 8, low[1] + (high[1] - low[1]) * j / 8)
+            for i in range(1, 8)
+            for j in range(1, 8)
+        ]
+        hits = p.rayTestBatch(
+            [(x, y, high[2] + 0.1) for x, y in grid],
+            [(x, y, low[2] - 0.1) for x, y in grid],
+            physicsClientId=cid,
+        )
+        top = max((h[3] for h in hits if h[0] == model.robot.body), key=lambda h: h[2])
         shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=(0.01,) * 3, physicsClientId=cid)
-        centre = ((low[0] + high[0]) / 2, (low[1] + high[1]) / 2, high[2] + 0.02)
-        p.createMultiBody(0.05, shape, basePosition=centre, physicsClientId=cid)
+        box = p.createMultiBody(
+            0.05, shape, basePosition=(top[0], top[1], top[2] + 0.012), physicsClientId=cid
+        )
         for _ in range(500):  # the box falls onto the part and settles
             sim.step()
-        return {'spawn_ms': spawn_ms, 'step_ms': median_ms(sim.step, count)}
+        resting = bool(p.getContactPoints(box, model.robot.body, physicsClientId=cid))
+        return {
+            'spawn_ms': spawn_ms,
+            'step_ms': median_ms(sim.step, count),
+            'resting': float(resting),
+        }
     finally:
         sim.close()
 
@@ -60,8 +79,13 @@ def concave_mesh(count: int = 2000) -> Dict[str, Any]:
         first = _world(mesh, False, count)
         cached = _world(mesh, False, count)
         hull = _world(mesh, True, count)
+        pieces_path = collision_mesh(mesh, (1.0, 1.0, 1.0)).path
+        with open(pieces_path or mesh) as f:
+            pieces = sum(line.startswith('o ') for line in f)
     return {
         'triangles': len(mesh_triangles(mesh)),
+        'pieces': pieces,
+        'box_resting': cached['resting'] and hull['resting'],
         'spawn_first_ms': first['spawn_ms'],
         'spawn_cached_ms': cached['spawn_ms'],
         'spawn_hull_ms': hull['spawn_ms'],
