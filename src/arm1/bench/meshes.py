@@ -1,8 +1,9 @@
 """What a concave collision mesh costs (physics/concave_meshes.py): its spawn with an empty
 cache (concavity check, convex pieces written, pybullet loading them), its spawn from the
 cache, and a physics step with a box resting on it (``box_resting``: it did, on both); each
-next to the same mesh as pybullet's convex hull, and how many pieces it became. The mesh is arm1's link2 (592 triangles, concave by 59 mm), on a moving link.
-In one process, no master needed.
+next to the same mesh as pybullet's convex hull, and how many pieces it became. The mesh
+is arm1's link2 (592 triangles, concave by 59 mm), on a moving link. In one process, no
+master needed.
 """
 
 from __future__ import annotations
