@@ -218,7 +218,7 @@ def l_triangles(k=6):
 
 
 def test_flat_faces_of_many_triangles_become_one_piece_each(tmp_path, monkeypatch):
-    # 6 outline faces + 2 L faces, 576 triangles: each outline face is one piece; each L
+    # 6 outline faces + 2 L faces, 720 triangles: each outline face is one piece; each L
     # face (not convex) two, its foot and its upright; never one piece over the notch
     tris = l_triangles()
     path = str(tmp_path / 'l.stl')

@@ -53,6 +53,7 @@ THICKNESS = 0.002  # m: how deep each triangle's prism reaches into the body
 TOLERANCE = 0.0002  # m: how far a patch's vertex may stand in front of its own planes
 PATCH_CONE = 0.5  # cos 60 degrees: the most a patch's triangle may turn from its seed's
 FLAT_COS = 0.9999  # normals this close (under ~0.8 degrees) may be one flat face
+PATCH_TRIANGLES = 256  # a patch grows no bigger (a flat face of more stays whole)
 WELD = 1e-7  # m: corners closer than this are one vertex
 VERSION = 2  # of the cached files' format; a change makes new ones (2: convex patches)
 CHUNK = 1 << 22  # face x hull-vertex products per numpy batch of the concavity check
@@ -282,7 +283,11 @@ def _in_front(points: np.ndarray, sides: Sides) -> float:
         return -np.inf
     planes = np.array([s for s, _ in sides.values()])
     offsets = np.array([d for _, d in sides.values()])
-    return float((points @ planes.T - offsets).max())
+    step = max(1, CHUNK // len(planes))  # a big flat face: many points, many edges
+    return max(
+        float((points[i : i + step] @ planes.T - offsets).max())
+        for i in range(0, len(points), step)
+    )
 
 
 class _Patch:
@@ -308,6 +313,8 @@ class _Patch:
         """Adds the unit (its outline ``sides``) when the patch stays convex with it; False
         leaves the patch unchanged."""
         s = self.surface
+        if len(self.members) + len(unit) > PATCH_TRIANGLES:
+            return False  # each join costs as the patch's size: big patches grow no more
         if (s.normals[unit] @ self.seed_normal).min() < PATCH_CONE:
             return False  # a triangle wound the other way, or a turn too sharp for one piece
         corners = set(int(v) for v in s.vertices(unit))
