@@ -43,7 +43,7 @@ class Gripper:
     box_size: float = 0.03
     gripper_topic: str = ''
     arm_topics: Tuple[str, ...] = ()
-    finger_joints: Tuple[str, ...] = ()
+    finger_joints: Tuple[str, ...] = ()  # the finger joints (reported through the hold)
     gripper_action: str = ''
     arm_action: str = ''
     notes: Dict[str, str] = field(default_factory=dict)
@@ -66,8 +66,9 @@ OMX = Gripper(
     closed_position=(-0.01,),
     arm_joints=('joint1', 'joint2', 'joint3', 'joint4'),
     start=(0.0, 0.0, 0.0, 0.0),
-    lift=(0.0, -0.3, 0.0, 0.3),
+    lift=(0.0, -0.4, 0.0, 0.4),
     box_size=0.03,
+    finger_joints=('gripper', 'gripper_sub'),
     gripper_topic='/gripper_position/command',
     arm_topics=tuple('/joint%d_position/command' % i for i in range(1, 5)),
 )
@@ -116,6 +117,14 @@ def to_frame(position: Vec, orientation: Quat, point: Vec) -> Vec:
     x, y, z, w = orientation
     d = (point[0] - position[0], point[1] - position[1], point[2] - position[2])
     return rotate((-x, -y, -z, w), d)
+
+
+def angle_between(a: Quat, b: Quat) -> float:
+    """The rotation angle (rad) from orientation a to b."""
+    import math
+
+    dot = abs(sum(x * y for x, y in zip(a, b)))
+    return 2 * math.acos(min(1.0, dot))
 
 
 def box_pose(

@@ -11,6 +11,7 @@ controllers, a 5 s hold, rise and slip judged (>= 40 mm, >= 95 % of the gripper'
 """
 
 import argparse
+import dataclasses
 import sys
 from typing import List, Optional
 
@@ -32,6 +33,7 @@ def parse_args(argv: Optional[List[str]]) -> argparse.Namespace:
     own.add_argument(
         '--offset', type=float, nargs=3, help="box from the fingers' centroid (palm frame, m)"
     )
+    own.add_argument('--lift', type=float, nargs='+', help='arm pose change that lifts (rad)')
     mine, rest = own.parse_known_args(rest)
     a = cli.parse_args(rest)
     for k, v in vars(mine).items():
@@ -43,6 +45,13 @@ def parse_args(argv: Optional[List[str]]) -> argparse.Namespace:
 def main(argv: Optional[List[str]] = None) -> int:
     a = parse_args(argv)
     g = grasp.GRIPPERS[a.robot]
+    if a.lift:
+        if len(a.lift) != len(g.arm_joints):
+            raise SystemExit(
+                'try_grasp: --lift takes %d values (%s)'
+                % (len(g.arm_joints), ', '.join(g.arm_joints))
+            )
+        g = dataclasses.replace(g, lift=tuple(a.lift))
 
     def work(progress: cli.Progress) -> dict:
         from arm1.tryout import grasp_ros

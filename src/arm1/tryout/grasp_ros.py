@@ -3,6 +3,7 @@ place a box between the open fingers (from /gazebo/get_link_state), close the gr
 the arm through the package's own controllers, hold, judge (grasp.judge_lift)."""
 
 import argparse
+import math
 from typing import Any, Callable, Dict, List, Optional
 
 import rospy
@@ -101,7 +102,12 @@ class Gazebo:
 
 
 def one_try(
-    g: grasp.Gripper, arm: Arm, gz: Gazebo, a: argparse.Namespace, log: Progress
+    g: grasp.Gripper,
+    arm: Arm,
+    gz: Gazebo,
+    states: Any,
+    a: argparse.Namespace,
+    log: Progress,
 ) -> Dict[str, Any]:
     from geometry_msgs.msg import Point, Pose, Quaternion
 
@@ -130,20 +136,46 @@ def one_try(
     arm.grip(g.closed_position, 1.5)
     palm = '%s::%s' % (g.model, g.palm_link)
     box = BOX + '::link'
-    palm_before, box_before = gz.pose(palm)[0], gz.pose(box)[0]
+    palm_before, (box_before, box_q0) = gz.pose(palm)[0], gz.pose(box)
+    in_palm_closed = grasp.to_frame(*gz.pose(palm), box_before)
     arm.move(g.start, g.lifted(), 2.0)
     samples: List[tuple] = []
+    fingers_seen: Dict[str, List[tuple]] = {}
     end = rospy.get_time() + grasp.HOLD_S
     while rospy.get_time() < end:
         pp, pq = gz.pose(palm)
         samples.append(grasp.to_frame(pp, pq, gz.pose(box)[0]))
+        for j in g.finger_joints:
+            fingers_seen.setdefault(j, []).append(
+                (states.positions.get(j, math.nan), states.velocities.get(j, math.nan))
+            )
         rospy.sleep(0.1)
-    v = grasp.judge_lift(palm_before, box_before, gz.pose(palm)[0], gz.pose(box)[0], samples)
+    box_after, box_q1 = gz.pose(box)
+    v = grasp.judge_lift(palm_before, box_before, gz.pose(palm)[0], box_after, samples)
+    # where the box sat in the palm frame (closed, hold start, hold end) and how far it
+    # turned: tells a slide along the pads from a swing about the grip axis
+    seen = dict(
+        box_in_palm_mm=[
+            [round(c * 1e3, 1) for c in p]
+            for p in (in_palm_closed, *samples[:: len(samples) - 1 or 1])
+        ],
+        fingers={
+            j: 'q %.4f..%.4f, |v| up to %.3f'
+            % (min(p for p, _ in v), max(p for p, _ in v), max(abs(w) for _, w in v))
+            for j, v in fingers_seen.items()
+        },
+        box_turned_deg=round(grasp.angle_between(box_q0, box_q1) * 57.29578, 1),
+    )
     arm.grip(g.open_position, 1.0)
     arm.move(g.lifted(), g.start, 2.0)
     gz.remove(BOX)
     gz.remove(PEDESTAL)
-    return dict(v.as_dict(), text=str(v))
+    return dict(
+        v.as_dict(),
+        text='%s; turned %.1f deg; box in palm (mm) %s'
+        % (v, seen['box_turned_deg'], seen['box_in_palm_mm']),
+        **seen,
+    )
 
 
 def tries(g: grasp.Gripper, a: argparse.Namespace, log: Progress) -> Dict[str, Any]:
@@ -151,6 +183,9 @@ def tries(g: grasp.Gripper, a: argparse.Namespace, log: Progress) -> Dict[str, A
     try:
         gz = Gazebo(30.0)
         arm = Arm(g, 30.0)
+        from arm1.tryout.probe import JointStates
+
+        states = JointStates()
     except Exception as e:
         res['problems'].append(str(e))
         res['ok'] = False
@@ -159,10 +194,12 @@ def tries(g: grasp.Gripper, a: argparse.Namespace, log: Progress) -> Dict[str, A
         log('try %d of %d' % (k + 1, a.tries))
         t: Optional[Dict[str, Any]]
         try:
-            t = one_try(g, arm, gz, a, log)
+            t = one_try(g, arm, gz, states, a, log)
         except Exception as e:
             t = {'ok': False, 'text': 'ERROR: %s' % e}
         log('  ' + t['text'])
+        if t.get('fingers'):
+            log('  fingers through the hold: %s' % t['fingers'])
         res['tries'].append(t)
     ok = sum(1 for t in res['tries'] if t.get('ok'))
     res['summary'] = '%s: %d of %d lifted' % (g.name, ok, a.tries)
