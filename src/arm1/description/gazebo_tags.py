@@ -25,6 +25,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from typing import Dict, List, Tuple
 
+from . import safe_xml
 from .lumping import TRUE_WORDS, Lumped, Pose, lump_fixed_joints, warn_moving_massless
 from .surface import NOT_APPLIED, Surface, SurfaceError, surface_from_tags
 from .urdf_model import RobotModel, UrdfError
@@ -134,7 +135,7 @@ def prepare_body(urdf_text: str, description: RobotModel, model: str) -> Tuple[s
     ``urdf_text`` was already parsed once safely (our own serialisation of the request);
     raises UrdfError naming the culprit.
     """
-    root = ET.fromstring(urdf_text)
+    root = safe_xml.parse_trusted(urdf_text)
     try:
         lumped = lump_fixed_joints(root, description.gazebo_refs)
     except ValueError as exc:

@@ -40,6 +40,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pybullet as p
 
+from ..description import safe_xml
 from ..description.limits import Limits
 from ..description.mesh_limits import mesh_kind
 from .stl import read_stl
@@ -483,7 +484,7 @@ def concave_collisions(
 ) -> str:
     """The URDF with each concave ``<collision>`` mesh (absolute paths: resolve_mesh_uris
     ran) replaced by its triangle hulls; visuals are left alone."""
-    root = ET.fromstring(urdf_text)
+    root = safe_xml.parse_trusted(urdf_text)
     changed = False
     for link in root.findall('link'):
         for mesh in link.findall('collision/geometry/mesh'):
