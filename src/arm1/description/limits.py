@@ -29,7 +29,7 @@ class Limits:
     models: int = 1000  # per world
     mesh_bytes: int = 256 * 1024 * 1024  # one mesh file
     mesh_triangles: int = 5_000_000  # one mesh
-    # one concave collision mesh made into one hull per triangle (physics/concave_meshes);
+    # one concave collision mesh made into convex pieces (physics/concave_meshes);
     # a larger one collides as its convex hull
     concave_mesh_triangles: int = 200_000
     rays_per_laser: int = 1_000_000  # samples x vertical samples of one ray sensor

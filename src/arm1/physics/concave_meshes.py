@@ -439,7 +439,7 @@ def collision_mesh(
     cache_dir: Optional[str] = None,
     limits: Optional[Limits] = None,
 ) -> CollisionMesh:
-    """The mesh at ``path`` (scaled by ``scale``) as it should collide: its triangle hulls
+    """The mesh at ``path`` (scaled by ``scale``) as it should collide: its convex pieces
     when it is concave, else itself. Raises MeshReadError for an unreadable mesh."""
     limits = limits or Limits()
     folder = cache_dir or default_cache_dir()
@@ -483,7 +483,7 @@ def concave_collisions(
     urdf_text: str, cache_dir: Optional[str] = None, limits: Optional[Limits] = None
 ) -> str:
     """The URDF with each concave ``<collision>`` mesh (absolute paths: resolve_mesh_uris
-    ran) replaced by its triangle hulls; visuals are left alone."""
+    ran) replaced by its convex pieces; visuals are left alone."""
     root = safe_xml.parse_trusted(urdf_text)
     changed = False
     for link in root.findall('link'):
