@@ -134,6 +134,10 @@ def one_try(
     log('  box %.0f mm at (%.3f, %.3f, %.3f)' % (size * 1e3, *centre))
     rospy.sleep(0.3)
     arm.grip(g.closed_position, 1.5)
+    # the column goes once the fingers hold the box: nothing but the gripper carries it, and
+    # no finger or arm can jam against a static body through the lift
+    gz.remove(PEDESTAL)
+    rospy.sleep(0.5)
     palm = '%s::%s' % (g.model, g.palm_link)
     box = BOX + '::link'
     palm_before, (box_before, box_q0) = gz.pose(palm)[0], gz.pose(box)
