@@ -34,6 +34,7 @@ def parse_args(argv: Optional[List[str]]) -> argparse.Namespace:
         '--offset', type=float, nargs=3, help="box from the fingers' centroid (palm frame, m)"
     )
     own.add_argument('--lift', type=float, nargs='+', help='arm pose change that lifts (rad)')
+    own.add_argument('--closed', type=float, nargs='+', help='gripper command that closes it')
     mine, rest = own.parse_known_args(rest)
     a = cli.parse_args(rest)
     for k, v in vars(mine).items():
@@ -52,6 +53,10 @@ def main(argv: Optional[List[str]] = None) -> int:
                 % (len(g.arm_joints), ', '.join(g.arm_joints))
             )
         g = dataclasses.replace(g, lift=tuple(a.lift))
+    if a.closed:
+        if len(a.closed) != len(g.closed_position):
+            raise SystemExit('try_grasp: --closed takes %d values' % len(g.closed_position))
+        g = dataclasses.replace(g, closed_position=tuple(a.closed))
 
     def work(progress: cli.Progress) -> dict:
         from arm1.tryout import grasp_ros
