@@ -184,7 +184,8 @@ def judge_lift(
     box_after: Vec,
     box_in_palm: Sequence[Vec],
 ) -> LiftVerdict:
-    """World positions of palm and box once closed (before) and after the hold, and the box's
+    """World positions of the gripper (the palm, or the point where it gripped the box) and
+    the box once closed (before) and after the hold, and the box's
     position in the palm's frame sampled through the hold (the first at its start): slip is
     the farthest it moved from that first sample."""
     if not box_in_palm:

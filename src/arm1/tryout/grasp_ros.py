@@ -140,7 +140,7 @@ def one_try(
     rospy.sleep(0.5)
     palm = '%s::%s' % (g.model, g.palm_link)
     box = BOX + '::link'
-    palm_before, (box_before, box_q0) = gz.pose(palm)[0], gz.pose(box)
+    box_before, box_q0 = gz.pose(box)
     in_palm_closed = grasp.to_frame(*gz.pose(palm), box_before)
     arm.move(g.start, g.lifted(), 2.0)
     samples: List[tuple] = []
@@ -155,7 +155,12 @@ def one_try(
             )
         rospy.sleep(0.1)
     box_after, box_q1 = gz.pose(box)
-    v = grasp.judge_lift(palm_before, box_before, gz.pose(palm)[0], box_after, samples)
+    # the gripper's rise is the rise of the point where it gripped the box (the palm may
+    # turn as the arm lifts: its origin's rise is not the fingers')
+    pp, pq = gz.pose(palm)
+    w = grasp.rotate(pq, in_palm_closed)
+    grip_after = (pp[0] + w[0], pp[1] + w[1], pp[2] + w[2])
+    v = grasp.judge_lift(box_before, box_before, grip_after, box_after, samples)
     # where the box sat in the palm frame (closed, hold start, hold end) and how far it
     # turned: tells a slide along the pads from a swing about the grip axis
     seen = dict(
