@@ -139,10 +139,11 @@ def camera_box_urdf(width, height, rate, camera_name='eye'):
     )
 
 
-def spawn_urdf(name, xml, z=0.05):
+def spawn_urdf(name, xml, z=0.05, x=0.0):
     """/gazebo/spawn_urdf_model: (success, status_message)."""
     rospy.wait_for_service('/gazebo/spawn_urdf_model', 60)
     pose = Pose()
+    pose.position.x = x
     pose.position.z = z
     pose.orientation.w = 1.0
     resp = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)(name, xml, '', pose, 'world')

@@ -50,7 +50,7 @@ class CameraLimits(WorldTestCase):
         return wait_for(lambda: self.clock.last().clock.to_sec() - start >= seconds, timeout)
 
     def test_01_a_6000x6000_camera_at_30_hz_is_refused_naming_camera_pixels(self):
-        ok, msg = spawn_urdf('big', camera_box_urdf(6000, 6000, 30))
+        ok, msg = spawn_urdf('big', camera_box_urdf(6000, 6000, 30), x=1.0)
         self.assertFalse(ok, msg)
         for words in ("'big'", 'camera pixels is 36000000', '16777216', '~limits/camera_pixels'):
             self.assertIn(words, msg)
@@ -59,7 +59,7 @@ class CameraLimits(WorldTestCase):
         self.assertEqual(publishers(TOPIC), [])
 
     def test_02_a_model_without_joints_streams_its_camera(self):
-        ok, msg = spawn_urdf('box', camera_box_urdf(320, 240, 30))
+        ok, msg = spawn_urdf('box', camera_box_urdf(320, 240, 30), x=1.0)
         self.assertTrue(ok, msg)
         images = ImageRecorder(TOPIC)
         try:
@@ -108,7 +108,7 @@ class CameraLimits(WorldTestCase):
         ok, msg = delete_model('box')
         self.assertTrue(ok, msg)
         self.assertTrue(wait_for(lambda: not publishers(TOPIC), 10), publishers(TOPIC))
-        ok, msg = spawn_urdf('box', camera_box_urdf(320, 240, 30))
+        ok, msg = spawn_urdf('box', camera_box_urdf(320, 240, 30), x=1.0)
         self.assertTrue(ok, msg)
         images = ImageRecorder(TOPIC)
         try:
