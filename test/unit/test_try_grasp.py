@@ -86,5 +86,17 @@ def test_command_line():
     )
     assert (a.robot, a.size, a.tries, a.mass, a.mu) == ('omx', 0.04, 2, 0.03, 1.0)
     assert (a.checkout, a.package, a.launch, a.also) == ('/src/x', 'pkg', 'x.launch', ['/y'])
+    assert a.lift is None and a.closed is None
+    a = grasp_cli.parse_args(
+        ['jaco', '/k', 'pkg', 'x.launch', '--lift', '0', '0', '0.3', '0', '0', '0']
+    )
+    assert a.lift == [0, 0, 0.3, 0, 0, 0]
     with pytest.raises(SystemExit):
         grasp_cli.parse_args(['ur5', '/src/x', 'pkg', 'x.launch'])
+
+
+def test_angle_between_orientations():
+    assert abs(grasp.angle_between((0, 0, 0, 1), quat_about_z(0.5)) - 0.5) < 1e-9
+    # q and -q are the same orientation
+    q = quat_about_z(0.3)
+    assert grasp.angle_between(q, tuple(-c for c in q)) < 1e-6
