@@ -141,7 +141,8 @@ def one_try(
     palm = '%s::%s' % (g.model, g.palm_link)
     box = BOX + '::link'
     box_before, box_q0 = gz.pose(box)
-    in_palm_closed = grasp.to_frame(*gz.pose(palm), box_before)
+    palm_p, palm_q = gz.pose(palm)
+    in_palm_closed = grasp.to_frame(palm_p, palm_q, box_before)
     arm.move(g.start, g.lifted(), 2.0)
     samples: List[tuple] = []
     fingers_seen: Dict[str, List[tuple]] = {}
@@ -163,15 +164,15 @@ def one_try(
     v = grasp.judge_lift(box_before, box_before, grip_after, box_after, samples)
     # where the box sat in the palm frame (closed, hold start, hold end) and how far it
     # turned: tells a slide along the pads from a swing about the grip axis
-    seen = dict(
+    seen: Dict[str, Any] = dict(
         box_in_palm_mm=[
             [round(c * 1e3, 1) for c in p]
             for p in (in_palm_closed, *samples[:: len(samples) - 1 or 1])
         ],
         fingers={
             j: 'q %.4f..%.4f, |v| up to %.3f'
-            % (min(p for p, _ in v), max(p for p, _ in v), max(abs(w) for _, w in v))
-            for j, v in fingers_seen.items()
+            % (min(q for q, _ in qv), max(q for q, _ in qv), max(abs(w) for _, w in qv))
+            for j, qv in fingers_seen.items()
         },
         box_turned_deg=round(grasp.angle_between(box_q0, box_q1) * 57.29578, 1),
     )
