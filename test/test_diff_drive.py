@@ -86,7 +86,12 @@ class DiffDrive(SpawningTestCase):
             self.assertAlmostEqual(msg.twist.twist.angular.z, 0.0, delta=0.05)
             self.assertGreater(msg.pose.pose.position.x - start.x, 0.25)
             self.assertAlmostEqual(msg.pose.pose.position.y, start.y, delta=0.03)
-            # the odom -> base_footprint transform says the same, at the same stamps
+            # the odom -> base_footprint transform says the same, at the same stamps; /tf is
+            # another socket, so its message of that step may arrive just after odom's
+            stamp = msg.header.stamp
+            assert wait_for(
+                lambda: any(t.header.stamp >= stamp for t in odom_transforms(tf)), 10
+            ), 'no /tf stamped at or after the odometry'
             transforms = {t.header.stamp: t for t in odom_transforms(tf)}
             self.assertIn(msg.header.stamp, transforms)
             t = transforms[msg.header.stamp].transform.translation
