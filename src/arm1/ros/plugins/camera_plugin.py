@@ -12,7 +12,7 @@ from __future__ import annotations
 import collections
 import struct
 import threading
-from typing import Any, Callable, Deque, List, Tuple
+from typing import Any, Callable, Deque, List, Protocol, Tuple
 
 import rospy
 from sensor_msgs.msg import CameraInfo, Image
@@ -25,6 +25,14 @@ from .frames import tf_prefix, tf_resolve
 
 MAX_PENDING_IMAGES = 2  # frames waiting for the publishing thread; older ones are dropped
 CHUNK = 1 << 20  # bytes of pixels serialized at a time
+
+
+class FrameViewer(Protocol):
+    """An in-process viewer of a camera's frames, shown a few a second."""
+
+    def due(self) -> bool: ...  # asked on the physics thread: render a frame for me?
+
+    def show(self, stamp_ns: int, data: Pixels) -> None: ...
 
 
 def camera_frame(sensor: CameraSensor) -> str:
@@ -94,14 +102,16 @@ class GazeboRosCamera:
         self._cond = threading.Condition()
         self._running = True
         self.dropped = 0  # frames the publishing thread was too slow for
-        # In-process viewers (the browser view) of each frame, called on the publishing
-        # thread: they want images as a subscriber does, without a copy through a socket.
-        self.viewers: List[Callable[[int, Pixels], None]] = []
+        # In-process viewers (the browser view), shown frames on the publishing thread
+        # without a copy through a socket; a frame is rendered for them only when one is due.
+        self.viewers: List[FrameViewer] = []
         self._thread = threading.Thread(
             target=self._run, daemon=True, name='camera-%s' % sensor.name
         )
         self._thread.start()
-        camera.wants_image = lambda: bool(self.viewers) or self._image_pub.get_num_connections() > 0
+        camera.wants_image = lambda: (
+            self._image_pub.get_num_connections() > 0 or any(v.due() for v in list(self.viewers))
+        )
         camera.wants_info = lambda: self._info_pub.get_num_connections() > 0
         camera.on_image = self._queue_image
         camera.on_info = self._queue_info
@@ -132,7 +142,8 @@ class GazeboRosCamera:
             try:
                 if kind == 'image':
                     for viewer in list(self.viewers):
-                        viewer(stamp_ns, data)
+                        if viewer.due():
+                            viewer.show(stamp_ns, data)
                     # always: a depth camera's override publishes its depth and points here
                     self.publish_image(stamp_ns, data)
                 else:

@@ -40,7 +40,8 @@ from .world_loop import WorldLoop
 FRAME_PERIOD = 1 / 40.0  # s of wall time between two scene updates (the view asks >= 30 fps)
 PANEL_PERIOD = 0.2  # s: status text, joint readouts, plots and camera images
 PLOT_SECONDS = 10.0  # of sim time shown by each joint plot
-CAMERA_PERIOD = 0.2  # s of wall time between two camera images sent
+CAMERA_PERIOD = 0.2  # s of wall time between two camera images rendered for the page
+STILL = 1e-5  # m, and quaternion component: a link moved less is not sent again
 IDLE_NAP = 0.25  # s: with no page open the view only looks for one this often
 TRAJECTORY_SECONDS = 1.0  # time_from_start of a slider's trajectory point
 INITIAL_CAMERA = (0.3, -0.3, 0.25)  # m: arm1 (15 cm tall) at the origin, as the pybullet window
@@ -124,6 +125,7 @@ class SceneModel:
             for i in range(len(model.links))
         ]
         self.meshes: List[Any] = []
+        self._shown: List[Optional[Pose]] = [None] * len(self.frames)
         for k, v in enumerate(visuals):
             mesh = view.meshes.get(v)
             if mesh is None or not (0 <= v.link + 1 < len(self.frames)):
@@ -151,13 +153,23 @@ class SceneModel:
         self.move(model.poses)
 
     def move(self, poses: Tuple[Pose, ...]) -> None:
-        for frame, (pos, orn) in zip(self.frames, poses):
-            frame.position = pos
-            frame.wxyz = _wxyz(orn)
+        # only links that moved: each assignment is a message to every page
+        for i, (frame, pose) in enumerate(zip(self.frames, poses)):
+            if _moved(self._shown[i], pose):
+                self._shown[i] = pose
+                frame.position = pose[0]
+                frame.wxyz = _wxyz(pose[1])
 
     def remove(self) -> None:
         for h in self.meshes + self.frames:
             h.remove()
+
+
+def _moved(shown: Optional[Pose], pose: Pose) -> bool:
+    """Whether ``pose`` is drawn apart from ``shown``: a controller at rest jitters far below."""
+    if shown is None:
+        return True
+    return any(abs(a - b) > STILL for a, b in zip(shown[0] + shown[1], pose[0] + pose[1]))
 
 
 def _selector(view: 'WebView', name: str) -> Callable[[Any], None]:
@@ -289,22 +301,26 @@ class CameraPanel:
         s = plugin.sensor
         self.plugin, self.sensor = plugin, s
         self._latest: Optional[Tuple[int, Any]] = None
-        self._sent_at = 0.0
+        self._received_at = -CAMERA_PERIOD
         self.handle = view.server.gui.add_image(
             np.zeros((s.height, s.width, 3), np.uint8),
             label='camera %s (%s)' % (s.name, s.image_topic),
             format='jpeg',
         )
-        plugin.viewers.append(self._on_frame)
+        plugin.viewers.append(self)
 
-    def _on_frame(self, stamp_ns: int, data: Any) -> None:  # the plugin's publishing thread
-        self._latest = (stamp_ns, data)
+    # -- the plugin's threads: a frame is rendered for the page only a few times a second
+    def due(self) -> bool:
+        return time.monotonic() - self._received_at >= CAMERA_PERIOD
+
+    def show(self, stamp_ns: int, data: Any) -> None:
+        self._latest, self._received_at = (stamp_ns, data), time.monotonic()
 
     def draw(self) -> None:
-        latest, now = self._latest, time.monotonic()
-        if latest is None or now - self._sent_at < CAMERA_PERIOD:
+        latest = self._latest
+        if latest is None:
             return
-        self._latest, self._sent_at = None, now
+        self._latest = None
         s = self.sensor
         pixels = np.frombuffer(latest[1], np.uint8, count=s.height * s.step)
         rows = pixels.reshape(s.height, s.step)
@@ -317,8 +333,8 @@ class CameraPanel:
         self.handle.image = image
 
     def remove(self) -> None:
-        if self._on_frame in self.plugin.viewers:
-            self.plugin.viewers.remove(self._on_frame)
+        if self in self.plugin.viewers:
+            self.plugin.viewers.remove(self)
         self.handle.remove()
 
 
