@@ -37,6 +37,7 @@ from arm1.ros.common.publishers import synchronous_publisher  # noqa: E402
 
 ACTION = '/arm1/arm_controller/follow_joint_trajectory'
 GAP_MARGIN = 0.5  # wall s a /clock gap (100 Hz of sim time) may exceed the baseline's longest
+BIG_GOAL_GAP_MARGIN = 1.0  # the same while the world decodes a 100 000-point goal
 MIN_RTF_RATIO = 0.5  # of the baseline's real-time factor, over a case's window (old: ~0.05)
 BASELINE = 2.0  # sim s of the baseline window
 CLIENT = '--hostile-client'
@@ -140,18 +141,17 @@ class FaultsTrajectory(WorldTestCase):
         self.base = self.window.stop()
         self.window.start()
 
-    def assert_pace(self, what, gap, rtf, judge_gap=True):
+    def assert_pace(self, what, gap, rtf, gap_margin=GAP_MARGIN):
         base_gap, base_rtf = self.base
         print(
             '%s: max /clock gap %.3f s, real-time factor %.3f (just before: %.3f s, %.3f)'
             % (what, gap, rtf, base_gap, base_rtf)
         )
-        if judge_gap:
-            self.assertLess(
-                gap,
-                base_gap + GAP_MARGIN,
-                '%s: /clock stopped for %.3f s (%.3f s before)' % (what, gap, base_gap),
-            )
+        self.assertLess(
+            gap,
+            base_gap + gap_margin,
+            '%s: /clock stopped for %.3f s (%.3f s before)' % (what, gap, base_gap),
+        )
         self.assertGreater(
             rtf,
             MIN_RTF_RATIO * base_rtf,
@@ -180,10 +180,10 @@ class FaultsTrajectory(WorldTestCase):
         sim_wait(2.0)
         gap, rtf = self.window.stop()
         self.assertTrue(active or big, 'the goal was not accepted')
-        # Receiving 100 000 points costs rospy seconds of CPU in the world's process: on a
-        # loaded machine the interpreter lock's hand-overs stretch into long /clock gaps,
-        # so the case is judged by its real-time factor (docs/faults.md, "Third round").
-        self.assert_pace('100 000-point goal', gap, rtf, judge_gap=False)
+        # Receiving 100 000 points is ~1 s of Python in the world's process: the world's short
+        # switch interval and rare full collections keep /clock going (docs/faults.md); 40 ms
+        # on an idle machine, up to 0.56 s with one core busy, 2.4 s before.
+        self.assert_pace('100 000-point goal', gap, rtf, BIG_GOAL_GAP_MARGIN)
         self.assert_arm_still_obeys()  # preempts it
 
     def test_a_storm_of_1000_goals_in_5_s_keeps_the_clock_and_bounds_the_status_list(self):

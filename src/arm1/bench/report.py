@@ -207,6 +207,27 @@ ROWS += [
         '%.2f',
     ),
 ]
+# a 100 000-point FollowJointTrajectory goal sent to gazebo.launch controllers:=trajectory at real
+# time (bench/big_goal.py): the world's pace while it receives the goal (issue 22's bounds)
+ROWS += [
+    (
+        '100 000-point trajectory goal: longest /clock gap (ms)',
+        'big_goal',
+        'gap_ms',
+        '≤ 100',
+        lambda v: v <= 100,
+        '%.0f',
+    ),
+    ('  the same window before the goal (ms)', 'big_goal', 'gap_before_ms', '', None, '%.0f'),
+    (
+        '  real-time factor while it is received',
+        'big_goal',
+        'rtf',
+        '≥ 0.97',
+        lambda v: v >= 0.97,
+        '%.3f',
+    ),
+]
 # a subscribed depth camera's frame, 640x480, all of it off the physics thread (bench/depth.py)
 ROWS += [
     ('depth camera frame cost (ms)', 'depth_camera', 'frame_ms', '', None, '%.1f'),

@@ -12,6 +12,7 @@ import sys
 from typing import Any, Callable, Dict, List, Optional
 
 from .bare_pybullet import bare
+from .big_goal import big_goal, big_goal_client
 from .depth import depth_frame
 from .idle import idle_world
 from .latency import latency, publisher
@@ -35,6 +36,8 @@ KINDS: Dict[str, Callable[..., Any]] = {
     'laser': laser_scan,
     'depth': depth_frame,
     'web_view': web_view,
+    'big_goal': big_goal,
+    'big_goal_client': big_goal_client,
     'concave_mesh': concave_mesh,
 }
 

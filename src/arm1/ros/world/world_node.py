@@ -7,6 +7,7 @@ and are handed to it between two steps (SimThreadCalls), so pybullet is only tou
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import sys
 from typing import Any, List, Optional, Sequence, Tuple
@@ -151,6 +152,24 @@ def world_config(args: argparse.Namespace) -> WorldConfig:
     return config
 
 
+SWITCH_INTERVAL = 0.0002  # s a thread holds the interpreter lock while another waits
+GC_THRESHOLDS = (10000, 10, 100)  # a full collection every ~10 M allocations, not ~70 k
+
+
+def pace_the_interpreter() -> None:
+    """Keep the physics thread's interpreter-lock waits short (issue 22, case 1).
+
+    Python's 5 ms switch interval lets a thread decoding a big message (a 100 000-point goal
+    is 0.4 s of genpy) hold the physics thread off for 5 ms at each of its 1 ms steps; and its
+    full collections, which hold the lock throughout, scan every live object: 100-250 ms
+    while such a goal's million objects arrive. The world built so far is frozen out of them.
+    """
+    sys.setswitchinterval(SWITCH_INTERVAL)
+    gc.collect()
+    gc.freeze()
+    gc.set_threshold(*GC_THRESHOLDS)
+
+
 def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
     """Init the node and build the world of parsed gzserver ``args``."""
     rospy.init_node('gazebo')
@@ -181,6 +200,7 @@ def start_world(args: argparse.Namespace) -> Tuple[WorldNode, Pacer]:
     )
     if args.web:
         start_web_view(node, args.web_host, args.web_port)
+    pace_the_interpreter()
     return node, Pacer(period)
 
 
