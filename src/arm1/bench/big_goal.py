@@ -10,7 +10,7 @@ import sys
 import time
 from typing import Any, Dict, List, Tuple
 
-from .launched import PROBE
+from .launched import launch_and_wait, record_clock
 
 ACTION = '/arm1/arm_controller/follow_joint_trajectory'
 JOINTS = ('joint1', 'joint2', 'joint3', 'joint4')
@@ -28,21 +28,14 @@ def _pace(clock: List[Tuple[float, float]], since: float) -> Tuple[float, float]
 
 def big_goal(count: int) -> Dict[str, Any]:
     import rospy
-    from rosgraph_msgs.msg import Clock
 
     from ..session.launcher import RosSession
 
     session = RosSession()
     session.activate()
     with session:
-        session.roslaunch('arm1', 'gazebo.launch', 'gui:=false', 'controllers:=trajectory')
-        if not session.wait_for_master(60):
-            raise RuntimeError('master did not start')
-        rospy.init_node(PROBE.lstrip('/'), anonymous=True, disable_signals=True)
-        clock: List[Tuple[float, float]] = []
-        rospy.Subscriber(
-            '/clock', Clock, lambda m: clock.append((time.perf_counter(), m.clock.to_sec()))
-        )
+        launch_and_wait(session, 'controllers:=trajectory')
+        clock = record_clock()
         rospy.wait_for_message(ACTION + '/status', rospy.AnyMsg, timeout=60)
         time.sleep(2.0)
         before = time.perf_counter()

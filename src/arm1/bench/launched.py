@@ -3,20 +3,33 @@
 from __future__ import annotations
 
 import time
-from typing import Any, Dict
+from typing import Any, Dict, List, Tuple
 
 from .probes import cpu_seconds, peak_rss_mb
 
 PROBE = '/bench_probe'
 
 
-def _launch_and_wait(session: Any, timeout: float = 60) -> None:
+def launch_and_wait(session: Any, *args: str, timeout: float = 60) -> None:
+    """``roslaunch arm1 gazebo.launch gui:=false ARGS``, then this process's probe node."""
     import rospy
 
-    session.roslaunch('arm1', 'gazebo.launch', 'gui:=false')
+    session.roslaunch('arm1', 'gazebo.launch', 'gui:=false', *args)
     if not session.wait_for_master(timeout):
         raise RuntimeError('master did not start')
     rospy.init_node(PROBE.lstrip('/'), anonymous=True, disable_signals=True)
+
+
+def record_clock() -> List[Tuple[float, float]]:
+    """(wall perf_counter, sim s) of each /clock message from now on, appended as they come."""
+    import rospy
+    from rosgraph_msgs.msg import Clock
+
+    clock: List[Tuple[float, float]] = []
+    rospy.Subscriber(
+        '/clock', Clock, lambda m: clock.append((time.perf_counter(), m.clock.to_sec()))
+    )
+    return clock
 
 
 def startup() -> Dict[str, Any]:
@@ -29,7 +42,7 @@ def startup() -> Dict[str, Any]:
     session.activate()
     with session:
         t0 = time.time()
-        _launch_and_wait(session)
+        launch_and_wait(session)
         msg = rospy.wait_for_message('/arm1/joint_states', rospy.AnyMsg, timeout=60)
         t1 = time.time()
         rospy.signal_shutdown('measured')
@@ -40,7 +53,6 @@ def realtime(seconds: float) -> Dict[str, float]:
     """At real_time_factor 1: measured RTF, joint_states rate in sim time, the world's CPU
     and peak RSS."""
     import rospy
-    from rosgraph_msgs.msg import Clock
     from sensor_msgs.msg import JointState
 
     from ..session.launcher import RosSession, node_pid
@@ -48,11 +60,8 @@ def realtime(seconds: float) -> Dict[str, float]:
     session = RosSession()
     session.activate()
     with session:
-        _launch_and_wait(session)
-        clock, stamps = [], []
-        rospy.Subscriber(
-            '/clock', Clock, lambda m: clock.append((time.perf_counter(), m.clock.to_sec()))
-        )
+        launch_and_wait(session)
+        clock, stamps = record_clock(), []
         rospy.Subscriber(
             '/arm1/joint_states',
             JointState,

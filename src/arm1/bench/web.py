@@ -7,7 +7,7 @@ from __future__ import annotations
 import time
 from typing import Any, Dict, List, Tuple
 
-from .launched import PROBE
+from .launched import PROBE, launch_and_wait, record_clock
 from .probes import cpu_seconds
 
 ASKED_HZ = 30.0  # arm1's camera (urdf/arm1.gazebo.xacro)
@@ -22,7 +22,6 @@ def _window(clock: List[Tuple[float, float]], world: List[int], seconds: float) 
 
 def web_view(seconds: float) -> Dict[str, Any]:
     import rospy
-    from rosgraph_msgs.msg import Clock
     from sensor_msgs.msg import Image
 
     from ..session.browser import Browser
@@ -31,14 +30,8 @@ def web_view(seconds: float) -> Dict[str, Any]:
     session = RosSession()
     session.activate()
     with session:
-        session.roslaunch('arm1', 'gazebo.launch', 'gui:=false', 'web:=true', 'web_port:=0')
-        if not session.wait_for_master(60):
-            raise RuntimeError('master did not start')
-        rospy.init_node(PROBE.lstrip('/'), anonymous=True, disable_signals=True)
-        clock: List[Tuple[float, float]] = []
-        rospy.Subscriber(
-            '/clock', Clock, lambda m: clock.append((time.perf_counter(), m.clock.to_sec()))
-        )
+        launch_and_wait(session, 'web:=true', 'web_port:=0')
+        clock = record_clock()
         rospy.wait_for_message('/arm1/joint_states', rospy.AnyMsg, timeout=60)
         deadline = time.time() + 30
         while not rospy.has_param('/gazebo/web_url') and time.time() < deadline:
