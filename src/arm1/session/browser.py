@@ -110,9 +110,14 @@ class Browser:
             time.sleep(0.2)
         return None
 
-    def screenshot(self, path=None):
-        """The page as PNG bytes (also written to ``path``)."""
-        data = base64.b64decode(self.send('Page.captureScreenshot', format='png')['data'])
+    def screenshot(self, path=None, clip=None):
+        """The page, or its rectangle ``clip`` (x, y, width, height), as PNG bytes (also
+        written to ``path``)."""
+        params: dict = {'format': 'png'}
+        if clip is not None:
+            x, y, w, h = clip
+            params['clip'] = {'x': x, 'y': y, 'width': w, 'height': h, 'scale': 1}
+        data = base64.b64decode(self.send('Page.captureScreenshot', **params)['data'])
         if path:
             with open(path, 'wb') as f:
                 f.write(data)
@@ -121,6 +126,18 @@ class Browser:
     def click(self, x, y):
         for kind in ('mousePressed', 'mouseReleased'):
             self.send('Input.dispatchMouseEvent', type=kind, x=x, y=y, button='left', clickCount=1)
+
+    def drag(self, points):
+        """A left-button drag through page points (x, y): pressed at the first, moved
+        through the others, released at the last."""
+        mouse = 'Input.dispatchMouseEvent'
+        (x, y), rest = points[0], points[1:]
+        self.send(mouse, type='mouseMoved', x=x, y=y)
+        self.send(mouse, type='mousePressed', x=x, y=y, button='left', buttons=1, clickCount=1)
+        for x, y in rest:
+            self.send(mouse, type='mouseMoved', x=x, y=y, button='left', buttons=1)
+            time.sleep(0.05)  # a few of the page's frames between two moves, as a hand gives
+        self.send(mouse, type='mouseReleased', x=x, y=y, button='left', buttons=0, clickCount=1)
 
     def key(self, key, code, keycode):
         for kind in ('keyDown', 'keyUp'):

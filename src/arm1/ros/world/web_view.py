@@ -48,6 +48,7 @@ INITIAL_CAMERA = (0.3, -0.3, 0.25)  # m: arm1 (15 cm tall) at the origin, as the
 INITIAL_LOOK_AT = (0.0, 0.0, 0.05)
 INITIAL_FOV = math.radians(60.0)  # vertical
 DEFAULT_HOST = '127.0.0.1'
+NO_SELECTION = 'Click a model to see its name, pose and links; drag its handles to move it.'
 DEFAULT_PORT = 8080
 
 
@@ -399,9 +400,7 @@ class WebView:
         self.reset_world_button.on_click(lambda _: self._call(self.sim.reset_world))
         self.reset_sim_button.on_click(lambda _: self._call(self.sim.reset_simulation))
         with gui.add_folder('Selected model'):
-            self.info = gui.add_markdown(
-                'Click a model to see its name, pose and links; drag its handles to move it.'
-            )
+            self.info = gui.add_markdown(NO_SELECTION)
 
     def _call(self, fn: Callable[..., Any], *args: Any) -> Any:
         try:
@@ -521,6 +520,7 @@ class WebView:
 
     def select_none(self) -> None:
         self.selected = None
+        self.info.content = NO_SELECTION  # the model is gone: nothing of it stays on the page
         if self._drag_handle is not None:
             self._drag_handle.remove()
             self._drag_handle = None
