@@ -137,11 +137,7 @@ def parse_description(xml_text: Union[str, bytes], limits: Optional[Limits] = No
     ELEMENTS_PER_PART elements for each link and joint the limits allow.
     """
     limits = limits or Limits()
-    if isinstance(xml_text, bytes):
-        size = len(xml_text)
-    else:
-        size = len(xml_text.encode('utf-8', 'surrogatepass'))
-    _check(limits, 'description_bytes', size, 'robot description')
+    _check(limits, 'description_bytes', safe_xml.utf8_size(xml_text), 'robot description')
     budget = int(ELEMENTS_PER_PART * (limits.links_per_model + limits.joints_per_model))
     try:
         return safe_xml.parse(xml_text, 'robot description', budget)
@@ -239,14 +235,41 @@ def _check_geometry(link: ET.Element) -> None:
                         )
 
 
-def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> RobotModel:
-    """What the simulator needs of a URDF; ``limits`` default to Limits()'s defaults.
+# pybullet's loadURDF builds each link's shapes in one call on the physics thread: a box or
+# mesh costs it ~7 us, a sphere, cylinder or capsule ~200-380 us (it is tessellated into a
+# mesh to be drawn), measured on a busy 2-core machine; shapes_per_model counts in these units.
+ROUND_SHAPES = ('sphere', 'cylinder', 'capsule')
+ROUND_SHAPE_UNITS = 20
+SHAPES_COUNTED = '(<visual> and <collision> elements; a sphere, cylinder or capsule counts %d)' % (
+    ROUND_SHAPE_UNITS
+)
+
+
+def shape_units(links: list) -> int:
+    """What the links' visuals and collisions cost pybullet to build, in box shapes."""
+    units = 0
+    for link in links:
+        for kind in ('visual', 'collision'):
+            for element in link.iterfind(kind):
+                round_ = any(element.find('geometry/' + tag) is not None for tag in ROUND_SHAPES)
+                units += ROUND_SHAPE_UNITS if round_ else 1
+    return units
+
+
+def parse_urdf(
+    xml_text: Union[str, bytes, ET.Element], limits: Optional[Limits] = None
+) -> RobotModel:
+    """What the simulator needs of a URDF (its text, or its root as parse_description gave
+    it); ``limits`` default to Limits()'s defaults.
 
     Raises UrdfError naming the culprit; UrdfLimitError (also a LimitError) when
     the description exceeds a limit.
     """
     limits = limits or Limits()
-    root = parse_description(xml_text, limits)
+    if isinstance(xml_text, ET.Element):
+        root = xml_text
+    else:
+        root = parse_description(xml_text, limits)
     if root.tag != 'robot':
         raise UrdfError('robot description has root <%s>, expected <robot>' % root.tag)
     robot = 'robot %s' % shown(root.get('name') or '')
@@ -257,6 +280,7 @@ def parse_urdf(xml_text: Union[str, bytes], limits: Optional[Limits] = None) -> 
     for e in link_elements:
         _check_inertial(e)
         _check_geometry(e)
+    _check(limits, 'shapes_per_model', shape_units(link_elements), robot + ' ' + SHAPES_COUNTED)
     if not links:
         raise UrdfError("robot '%s' has no <link>" % root.get('name'))
     joints = {}

@@ -16,12 +16,19 @@ from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tupl
 from ..control.controller_manager import ControllerManager
 from ..control.loop import ControlLoop, control_period_ns
 from ..description.camera_sensor import CameraSensor, camera_sensors
+from ..description.compact_urdf import compact_urdf
 from ..description.gazebo_tags import BodyOptions, prepare_body
 from ..description.limits import LimitError
 from ..description.names import IllegalName, check_name, shown
 from ..description.pose_math import normalized
 from ..description.sdf_world import WorldConfig
-from ..description.urdf_model import RobotModel, UrdfError, parse_urdf, resolve_mesh_uris
+from ..description.urdf_model import (
+    RobotModel,
+    UrdfError,
+    parse_description,
+    parse_urdf,
+    resolve_mesh_uris,
+)
 from ..physics.concave_meshes import concave_collisions
 from ..physics.contact import set_collision_namer
 from ..physics.laser import ray_casts_per_second
@@ -161,8 +168,12 @@ class Simulation:
         if not _finite_pose(position, orientation):
             raise SpawnError("cannot spawn '%s': the initial pose is not 7 finite numbers" % name)
         try:
-            description = parse_urdf(urdf_xml, limits)
-            resolved = resolve_mesh_uris(urdf_xml, find_package or _no_packages, limits)
+            root = parse_description(urdf_xml, limits)  # the request's one parse
+            description = parse_urdf(root, limits)
+            # pybullet parses what it is handed in one call on the physics thread: only the
+            # links, joints and materials it reads (comments, <gazebo> and the rest stay here)
+            compact = compact_urdf(root)
+            resolved = resolve_mesh_uris(compact, find_package or _no_packages, limits)
             # concave collision meshes as their triangles, as ODE's trimeshes (not their hull)
             resolved = concave_collisions(resolved, limits=limits)
             # As Gazebo's URDF->SDF: fixed joints lumped, frames weightless, <gazebo> tags

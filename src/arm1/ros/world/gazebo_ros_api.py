@@ -11,7 +11,7 @@ from typing import Any, Callable, List, Optional, Sequence, Tuple
 
 import rosgraph.names
 import rospy
-from gazebo_msgs.srv import DeleteModel, SetModelConfiguration, SpawnModel
+from gazebo_msgs.srv import DeleteModel, SetModelConfiguration
 from std_srvs.srv import Empty
 
 from ...description.names import shown
@@ -28,6 +28,7 @@ from ..plugins.camera_plugin import GazeboRosCamera
 from ..plugins.depth_camera_plugin import GazeboRosDepthCamera
 from ..plugins.sensor_plugins import attach_sensor_plugins
 from .sim_thread import SimThreadCalls
+from .spawn_request import PiecewiseSpawnModel
 from .world_loop import WorldLoop
 
 
@@ -40,8 +41,9 @@ class GazeboRosApi:
             rospy.Service('~unpause_physics', Empty, self._empty(self._set_paused, False)),
             rospy.Service('~reset_simulation', Empty, self._empty(self.sim.reset_simulation)),
             rospy.Service('~reset_world', Empty, self._empty(self.sim.reset_world)),
-            rospy.Service('~spawn_urdf_model', SpawnModel, self._spawn),
-            rospy.Service('~spawn_sdf_model', SpawnModel, self._spawn_sdf),
+            # requests of up to description_bytes, decoded without stopping physics
+            rospy.Service('~spawn_urdf_model', PiecewiseSpawnModel, self._spawn),
+            rospy.Service('~spawn_sdf_model', PiecewiseSpawnModel, self._spawn_sdf),
             rospy.Service('~delete_model', DeleteModel, self._delete),
             rospy.Service('~set_model_configuration', SetModelConfiguration, self._configure),
         ]
