@@ -173,3 +173,51 @@ def check_arm_drawn(test, browser, arm, links, poses=(POSE_A, POSE_B)):
         shots.append(screenshot(browser, name))
         tips.append(link_positions(links)['link4'])
     assert_arm_drawn(test, shots[0], shots[1], tips[0], tips[1], scene_right_edge(browser))
+
+
+ARM_LINKS = ('base_link', 'link1', 'link2', 'link3', 'link4', 'camera_link')
+ORANGE_LINKS = ('link1', 'link3')  # arm1.urdf.xacro's material="orange"
+# JavaScript: the rectangles of the page's notice that WebGL runs in software (its stripe is
+# orange too)
+NOTICES_JS = (
+    "[...document.querySelectorAll('div')].filter(d => (d.innerText || '')"
+    ".startsWith('Software WebGL')).map(d => d.getBoundingClientRect())"
+    '.filter(r => r.width < 500).map(r => [r.left, r.top, r.width, r.height])'
+)
+
+
+def orange(shot):
+    """Pixels of arm1's orange links (bright, green about half the red, little blue): not
+    the grey ground, the white links or a red box's shading."""
+    r, g, b = shot[..., 0], shot[..., 1], shot[..., 2]
+    return (r > 150) & (r - g > 40) & (g > 0.4 * r) & (b < 0.6 * g)
+
+
+def check_arm_shown(test, browser, links):
+    """One screenshot of the arm at rest (``links``: a /gazebo/link_states Recorder): its
+    orange links are drawn, and only where its link states project into the page's camera."""
+    test.assertTrue(wait_drawn(browser), 'the page never settled')
+    shot = screenshot(browser, 'arm')
+    at = link_positions(links)
+    height, width = shot.shape[:2]
+    mask = orange(shot)
+    mask[:, scene_right_edge(browser) :] = False
+    for x, y, w, h in browser.js(NOTICES_JS) or []:
+        mask[max(0, int(y) - 4) : int(y + h) + 4, max(0, int(x) - 4) : int(x + w) + 4] = False
+    ys, xs = np.nonzero(mask)
+    test.assertGreater(len(xs), 200, 'the arm is not drawn (no orange links on the page)')
+    shown = [link for link in ARM_LINKS if link in at]
+    test.assertIn('link4', shown, 'no link states of the arm')
+    drawn = project([at[link] for link in shown], width, height)
+    margin = height / 8  # a link's own size on the page
+    inside = (
+        (xs >= drawn[:, 0].min() - margin)
+        & (xs <= drawn[:, 0].max() + margin)
+        & (ys >= drawn[:, 1].min() - margin)
+        & (ys <= drawn[:, 1].max() + margin)
+    )
+    test.assertGreater(inside.mean(), 0.95, 'orange drawn away from the arm')
+    for link, (x, y) in zip(shown, drawn):
+        if link in ORANGE_LINKS:
+            near = np.hypot(xs - x, ys - y) < margin
+            test.assertGreater(near.sum(), 20, '%s not drawn at (%d, %d)' % (link, x, y))
