@@ -98,6 +98,24 @@ class ClockPace:
         return bool(wait_for(lambda: self.now()[1] - before >= seconds, timeout))
 
 
+class ClockWindow:
+    """/clock gaps and real-time factor between start() and stop(), in wall time of arrival."""
+
+    def __init__(self, clock: Recorder) -> None:
+        self.clock = clock
+
+    def start(self) -> None:
+        self.t0 = time.monotonic()
+
+    def stop(self) -> Tuple[float, float]:
+        msgs = [(t, m.clock.to_sec()) for t, m in list(self.clock.msgs) if t >= self.t0]
+        assert len(msgs) > 10, 'no /clock during the case'
+        gaps = [b[0] - a[0] for a, b in zip(msgs, msgs[1:])]
+        wall = msgs[-1][0] - msgs[0][0]
+        rtf = (msgs[-1][1] - msgs[0][1]) / max(wall, 1e-9)
+        return max(gaps), rtf
+
+
 def logged(rosout: Recorder, since: float, *words: str, timeout: float = 10) -> Optional[str]:
     """The first /rosout message since ``since`` (wall) that contains every word, or None."""
 

@@ -31,6 +31,7 @@ from gazebo_msgs.srv import GetPhysicsProperties, SetPhysicsProperties
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from faults_util import ClockWindow  # noqa: E402
 from rostest_util import JOINTS, Recorder, WorldTestCase, positions, sim_wait, wait_for  # noqa: E402
 
 from arm1.ros.common.publishers import synchronous_publisher  # noqa: E402
@@ -42,24 +43,6 @@ MIN_RTF_RATIO = 0.5  # of the baseline's real-time factor, over a case's window 
 BASELINE = 2.0  # sim s of the baseline window
 CLIENT = '--hostile-client'
 MAX_STATUS = 110  # entries of one status message: MAX_FINISHED (100) + the live ones
-
-
-class ClockWindow:
-    """/clock gaps and real-time factor between start() and stop(), in wall time of arrival."""
-
-    def __init__(self, clock):
-        self.clock = clock
-
-    def start(self):
-        self.t0 = time.monotonic()
-
-    def stop(self):
-        msgs = [(t, m.clock.to_sec()) for t, m in list(self.clock.msgs) if t >= self.t0]
-        assert len(msgs) > 10, 'no /clock during the case'
-        gaps = [b[0] - a[0] for a, b in zip(msgs, msgs[1:])]
-        wall = msgs[-1][0] - msgs[0][0]
-        rtf = (msgs[-1][1] - msgs[0][1]) / max(wall, 1e-9)
-        return max(gaps), rtf
 
 
 def goal_msg(points, start, seconds_per_point):
