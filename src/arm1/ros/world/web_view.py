@@ -162,8 +162,11 @@ class SceneModel:
                 frame.wxyz = _wxyz(pose[1])
 
     def remove(self) -> None:
-        for h in self.meshes + self.frames:
-            h.remove()
+        # a frame's removal takes its visuals with it; each is forgotten only once gone, so
+        # that a removal cut short (WebView._run) is finished by the next frame's call
+        while self.frames:
+            self.frames[-1].remove()
+            self.frames.pop()
 
 
 def _moved(shown: Optional[Pose], pose: Pose) -> bool:
@@ -189,7 +192,7 @@ class ControllerPanel:
     def __init__(self, view: 'WebView', model: ModelView) -> None:
         gui = view.server.gui
         self.view, self.key = view, _panel_key(model)
-        self.folder = gui.add_folder('Controllers: %s' % model.namespace)
+        self.folder: Any = gui.add_folder('Controllers: %s' % model.namespace)
         self.publishers: List[rospy.Publisher] = []
         self.readout: Any = None
         self.plot: Any = None
@@ -277,9 +280,11 @@ class ControllerPanel:
         self.plot.data = (times,) + tuple(cols)
 
     def remove(self) -> None:
-        for pub in self.publishers:
-            pub.unregister()
-        self.folder.remove()
+        while self.publishers:
+            self.publishers.pop().unregister()
+        if self.folder is not None:  # once: a removal cut short is finished by the next call
+            self.folder.remove()
+            self.folder = None
 
 
 def _panel_key(model: ModelView) -> Tuple[Any, ...]:
@@ -481,6 +486,9 @@ class WebView:
                     last_panel = started
                     self._panels(snap)
             except Exception as exc:  # a page's trouble never ends the world
+                # viser 1.1.1 sets an asyncio.Event from this thread with each message: rarely
+                # "deque mutated during iteration" as its loop adds a waiter. The message is
+                # queued; the rest of the frame is redone (or finished) by the next one.
                 rospy.logerr('web view: %s: %s', type(exc).__name__, exc)
             self.frames += 1
             rest = FRAME_PERIOD - (time.monotonic() - started)
@@ -491,7 +499,8 @@ class WebView:
         self._last = snap
         with self.server.atomic():
             for name in [n for n in self.models if n not in snap.models]:
-                self.models.pop(name).remove()
+                self.models[name].remove()
+                del self.models[name]  # only once gone: a cut-short removal is retried
                 if name == self.selected:
                     self.select_none()
             self.snapshots.known = frozenset(m.token for m in self.models.values())
@@ -535,7 +544,8 @@ class WebView:
         )
         self.pause_button.label = 'Play' if snap.paused else 'Pause'
         for name in [n for n in self.panels if n not in snap.models]:
-            self.panels.pop(name).remove()
+            self.panels[name].remove()
+            del self.panels[name]
         for name, view in snap.models.items():
             if not view.namespace:
                 continue
