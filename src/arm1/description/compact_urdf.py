@@ -41,7 +41,7 @@ def compact_urdf(root: ET.Element) -> str:
 
     Raises UrdfError naming the element when a kept element is longer than a line pybullet
     reads whole (gazebo_tags.PYBULLET_LINE)."""
-    head = ET.Element('robot', {'name': root.get('name', '')})
+    head = ET.Element('robot', {k: v for k, v in root.attrib.items() if k == 'name'})
     lines: List[str] = [ET.tostring(head, encoding='unicode')[: -len(' />')] + '>\n']
     for child in root:
         if child.tag in TOP_LEVEL:
