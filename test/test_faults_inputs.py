@@ -35,7 +35,6 @@ from controller_manager_msgs.srv import (
 )
 from dynamic_reconfigure.client import Client
 from gazebo_msgs.srv import DeleteModel, GetWorldProperties, SetModelConfiguration, SpawnModel
-from geometry_msgs.msg import Point, Pose, Quaternion
 from std_msgs.msg import Float64
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -59,6 +58,7 @@ from rostest_util import (  # noqa: E402
     wait_for_controllers,
 )
 
+from arm1.bench.big_description import spawn_big_description  # noqa: E402
 from arm1.ros.common.publishers import synchronous_publisher  # noqa: E402
 
 CM = '/arm1/controller_manager/'
@@ -78,36 +78,13 @@ MIN_PACE = 0.9  # real-time factor from /clock that floods must not push the wor
 GAP_MARGIN = 0.5
 MIN_RTF_RATIO = 0.5
 BIG_CLIENT = '--big-description-client'
-BULK = 50 * 1000 * 1000  # characters of padding: inside the 64 MiB description_bytes
-
-
-def big_description(kind):
-    """``bulk``: a 2-link robot padded to 50 MB with comments and a <gazebo> plugin's text,
-    its base carrying 1 900 box visuals (inside shapes_per_model); ``shapes``: 40 000 box
-    collisions on one link (3.8 MB, inside the element budget, 45 s of pybullet's loadURDF)."""
-    box = '<geometry><box size="0.01 0.01 0.01"/></geometry>'
-    if kind == 'shapes':
-        extra = '<collision>%s</collision>' % box * 40000
-        return urdf('shapes', links=2).replace('</link>', extra + '</link>', 1)
-    comment = '<!-- %s -->\n' % ('c' * 90)
-    comments = comment * (BULK // 10 // len(comment))
-    text = '<gazebo><plugin name="notes" filename="libnotes.so"><notes>%s</notes></plugin></gazebo>'
-    padding = comments + text % ('t' * (BULK - len(comments)))
-    visuals = '<visual><origin xyz="0 0 0.1"/>%s</visual>' % box * 1900
-    robot = urdf('bulk', links=2).replace('</link>', visuals + '</link>', 1)
-    return robot.replace('</robot>', padding + '</robot>')
 
 
 def big_client_main(kind, name):
-    """Spawns ``big_description(kind)`` from a process of its own (so that building and
-    sending 50 MB does not delay the test's /clock recorder) and prints the answer."""
-    xml = big_description(kind)
+    """Spawns ``big_description(kind)`` (arm1.bench.big_description) from a process of its own,
+    so that building and sending 50 MB does not delay the test's /clock recorder."""
     rospy.init_node('big_description_client', anonymous=True)
-    rospy.wait_for_service('/gazebo/spawn_urdf_model', 60)
-    # 2 m clear of arm1: a model spawned inside its links would cost contacts, not parsing
-    clear = Pose(Point(2.0, 0.0, 0.0), Quaternion(0.0, 0.0, 0.0, 1.0))
-    answer = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)(name, xml, '', clear, '')
-    print('%.1f MB answered %s: %s' % (len(xml) / 1e6, answer.success, answer.status_message))
+    print(spawn_big_description(kind, name))
 
 
 def spawn_from_another_process(kind, name):
@@ -196,7 +173,7 @@ class FaultsInputs(unittest.TestCase):
         return msg
 
     def paced_spawn(self, kind, name):
-        """Spawn ``big_description(kind)`` from another process: (success, answer, files the
+        """Spawn arm1.bench.big_description(kind) from another process: (success, answer, files the
         world wrote for it); asserts /clock kept the pace of the 1.5 sim s before."""
         self.window.start()
         sim_wait(1.5)

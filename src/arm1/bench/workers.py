@@ -12,6 +12,7 @@ import sys
 from typing import Any, Callable, Dict, List, Optional
 
 from .bare_pybullet import bare
+from .big_description import big_description_bench, big_description_client
 from .big_goal import big_goal, big_goal_client
 from .depth import depth_frame
 from .idle import idle_world
@@ -38,6 +39,8 @@ KINDS: Dict[str, Callable[..., Any]] = {
     'web_view': web_view,
     'big_goal': big_goal,
     'big_goal_client': big_goal_client,
+    'big_description': big_description_bench,
+    'big_description_client': big_description_client,
     'concave_mesh': concave_mesh,
 }
 
