@@ -97,20 +97,20 @@ def viewport(browser):
     return browser.js('[window.innerWidth, window.innerHeight]')
 
 
-def wait_drawn(browser, timeout=60):
-    """Until the page's scene is drawn the same twice, half a second apart (software WebGL
-    takes seconds to light a new page: a screenshot before then is washed out)."""
-    width, height = viewport(browser)
-    clip = (0, 0, scene_right_edge(browser), height)
+def wait_drawn(browser, name, timeout=60):
+    """The page once its scene is drawn the same twice, half a second apart (software WebGL
+    takes seconds to light a new page: a screenshot before then is washed out), as
+    ``screenshot`` gives it; None if it never settled."""
+    scene = slice(0, scene_right_edge(browser))
     end = time.monotonic() + timeout
-    last = screenshot(browser, 'settling', clip)
+    last = screenshot(browser, name)
     while time.monotonic() < end:
         time.sleep(0.5)
-        shot = screenshot(browser, 'settling', clip)
-        if (np.abs(shot - last).max(axis=2) > 40).sum() < 50:
-            return True
+        shot = screenshot(browser, name)
+        if (np.abs(shot[:, scene] - last[:, scene]).max(axis=2) > 40).sum() < 50:
+            return shot
         last = shot
-    return False
+    return None
 
 
 def scene_right_edge(browser):
@@ -169,8 +169,9 @@ def check_arm_drawn(test, browser, arm, links, poses=(POSE_A, POSE_B)):
     shots, tips = [], []
     for name, pose in zip('ab', poses):
         test.assertTrue(arm.go(pose, timeout=120), 'the arm did not reach pose %s' % name)
-        test.assertTrue(wait_drawn(browser), 'the page never settled at pose %s' % name)
-        shots.append(screenshot(browser, name))
+        shot = wait_drawn(browser, name)
+        test.assertIsNotNone(shot, 'the page never settled at pose %s' % name)
+        shots.append(shot)
         tips.append(link_positions(links)['link4'])
     assert_arm_drawn(test, shots[0], shots[1], tips[0], tips[1], scene_right_edge(browser))
 
@@ -196,8 +197,8 @@ def orange(shot):
 def check_arm_shown(test, browser, links):
     """One screenshot of the arm at rest (``links``: a /gazebo/link_states Recorder): its
     orange links are drawn, and only where its link states project into the page's camera."""
-    test.assertTrue(wait_drawn(browser), 'the page never settled')
-    shot = screenshot(browser, 'arm')
+    shot = wait_drawn(browser, 'arm')
+    test.assertIsNotNone(shot, 'the page never settled')
     at = link_positions(links)
     height, width = shot.shape[:2]
     mask = orange(shot)
