@@ -76,18 +76,23 @@ def follow(body: int, client: int, mimics: Sequence[MimicJoint]) -> None:
     """Before a step: each follower's motor toward its target, set last so that it overrides
     anything written to the follower, and last step's reaction kept off its leader."""
     for m in mimics:
-        lead, lead_vel = p.getJointState(body, m.leader, physicsClientId=client)[:2]
+        lead = p.getJointState(body, m.leader, physicsClientId=client)[0]
         target = lead * m.multiplier + m.offset
         if m.sensitiveness > 0:
             pos = p.getJointState(body, m.follower, physicsClientId=client)[0]
             if abs(target - pos) < m.sensitiveness:
                 target = pos
+        # Target velocity 0, not the leader's: with the leader's (one step old) velocity fed
+        # forward, two fingers squeezing an object chattered sideways with it at half the
+        # step rate (+-0.02-0.04 m/s every other step, the positions still: a gripper
+        # controller never saw a stall). The position term alone follows a moving leader
+        # (lagging v * dt / POSITION_GAIN: 0.8 mm at 0.17 m/s and 1 kHz).
         p.setJointMotorControl2(
             body,
             m.follower,
             p.POSITION_CONTROL,
             targetPosition=target,
-            targetVelocity=lead_vel * m.multiplier,
+            targetVelocity=0.0,
             force=m.max_force,
             positionGain=POSITION_GAIN,
             velocityGain=VELOCITY_GAIN,
