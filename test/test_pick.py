@@ -12,6 +12,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 import actionlib
 import rospy
@@ -24,7 +25,7 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rostest_util import Recorder, SpawningTestCase, sim_wait, spawn_urdf  # noqa: E402
+from rostest_util import Recorder, SpawningTestCase, sim_wait, spawn_urdf, wait_for  # noqa: E402
 
 from arm1.goal.pick_place import HOLD_S, LIFT_RISE, OBJECTS, judge_hold, pick_lift  # noqa: E402
 from arm1.ros.common.packages import find_package  # noqa: E402
@@ -34,6 +35,8 @@ REACH_X = 0.3  # where an arm:=false pick_arm's fingers are
 CONTROLLERS = ['joint_state_controller', 'lift_controller', 'gripper_controller']
 CLOSED, OPEN = 0.045, 0.0
 SQUEEZE = 5.0  # N: max_effort of a closing goal (effort fingers)
+# sim s: the fingers close in ~0.3 s and a goal ends stall_timeout (0.3 s) after they stop
+GRIP_S = 2.0
 
 
 def quat_z(yaw):
@@ -144,6 +147,22 @@ class Pick(SpawningTestCase):
             cls.events = Recorder('/gazebo/grasp_events', GazeboGraspEvent)
         cls.arms = [Arm(i, o, cls.fingers, grasp_plugin) for i, o in enumerate(OBJECTS)]
 
+    def wait_for_grips(self, k, failures):
+        """All the closing goals at once, for GRIP_S sim s at most: each ends on its object
+        (stalled there) or at the closed position; one still active is a failure."""
+        start = rospy.Time.now()
+
+        def ended():
+            return all(a.gripper.simple_state == actionlib.SimpleGoalState.DONE for a in self.arms)
+
+        wait_for(lambda: ended() or (rospy.Time.now() - start).to_sec() >= GRIP_S, 20 * GRIP_S + 5)
+        for arm in self.arms:
+            if arm.gripper.simple_state != actionlib.SimpleGoalState.DONE:
+                failures.append(
+                    'try %d %s: the closing goal still active after %g sim s'
+                    % (k, arm.obj.name, GRIP_S)
+                )
+
     def check_events(self, k, attached, failures):
         """With the grasp plugin: each object's last event says attached (held) or not."""
         for arm in self.arms:
@@ -157,6 +176,7 @@ class Pick(SpawningTestCase):
     def test_objects_are_held_through_the_hold_and_fall_when_released(self):
         failures, lines = [], []
         for k in range(self.tries):
+            wall, sim = time.time(), rospy.Time.now()
             # A different grasp each try: up to 3 mm off centre, up to 0.03 rad turned.
             dx, dy, yaw = 0.002 * math.sin(k), 0.003 * math.cos(1.7 * k), 0.03 * math.sin(2.3 * k)
             for arm in self.arms:
@@ -168,8 +188,7 @@ class Pick(SpawningTestCase):
             sim_wait(0.3)
             for arm in self.arms:
                 arm.grip(CLOSED)
-            for arm in self.arms:
-                arm.gripper.wait_for_result(rospy.Duration(30))
+            self.wait_for_grips(k, failures)
             sim_wait(0.3)
             before = [heights(arm) for arm in self.arms]
             for arm in self.arms:
@@ -200,6 +219,11 @@ class Pick(SpawningTestCase):
                     failures.append(
                         'try %d %s: still at z %.3f after the gripper opened' % (k, arm.obj.name, z)
                     )
+            # What a try costs, for the .test files' tries (sim s is fixed, wall s is the load's).
+            lines.append(
+                'try %d: %.1f sim s, %.1f wall s'
+                % (k, (rospy.Time.now() - sim).to_sec(), time.time() - wall)
+            )
         rospy.loginfo('\n'.join(lines))
         if self.events is not None:
             print('grasp events: %d' % len(self.events.since(0)))
