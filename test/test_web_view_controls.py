@@ -57,6 +57,8 @@ BOX_SDF = (
     '<ambient>1 0 0 1</ambient><diffuse>1 0 0 1</diffuse></material></visual></link></model>'
     '</sdf>'
 ).format(s=SIDE)
+# s of wall time: the longest the page or the world may take to answer on a loaded machine
+PAGE = 60
 INFO = re.compile(r'position (\S+) (\S+) (\S+) m')
 
 
@@ -112,11 +114,11 @@ class WebViewControls(WorldTestCase):
 
     def pause(self):
         click_button(self.browser, 'Pause')
-        self.assertTrue(wait_for(lambda: self.physics().pause, 20), 'the world is not paused')
+        self.assertTrue(wait_for(lambda: self.physics().pause, PAGE), 'the world is not paused')
 
     def play(self):
         click_button(self.browser, 'Play')
-        self.assertTrue(wait_for(lambda: not self.physics().pause, 20), 'Play did not resume')
+        self.assertTrue(wait_for(lambda: not self.physics().pause, PAGE), 'Play did not resume')
 
     # -- the page robot_spawn.launch serves (issue 23's done-when) ----------------------
     def test_01_the_arm_and_its_camera_image(self):
@@ -135,17 +137,17 @@ class WebViewControls(WorldTestCase):
         t = before
         for k in range(3):  # each click one step: no more, no fewer
             click_button(self.browser, 'Step')
-            moved = wait_for(lambda: self.world().sim_time != t, 10)
+            moved = wait_for(lambda: self.world().sim_time != t, PAGE)
             self.assertTrue(moved, 'Step %d did not step the world' % (k + 1))
             time.sleep(0.3)  # a second step would show by now
             now = self.world().sim_time
             self.assertAlmostEqual(now - t, step, delta=1e-9, msg='Step %d' % (k + 1))
             t = now
         self.assertTrue(
-            wait_for(lambda: abs(self.clock.last().clock.to_sec() - t) < 1e-6, 10),
+            wait_for(lambda: abs(self.clock.last().clock.to_sec() - t) < 1e-6, PAGE),
             '/clock does not say the stepped time',
         )
-        shown = self.browser.wait_js(page_has_js('sim time %.3f s' % t), 10)
+        shown = self.browser.wait_js(page_has_js('sim time %.3f s' % t), PAGE)
         self.assertTrue(shown, 'the page does not show sim time %.3f s' % t)
         self.assertTrue(self.physics().pause, 'Step unpaused the world')
         self.play()
@@ -153,12 +155,12 @@ class WebViewControls(WorldTestCase):
     # -- selecting and dragging a model ------------------------------------------------
     def test_03_a_click_on_a_model_shows_its_name_pose_and_links(self):
         spawn_box(BOX_AT)  # while the page is open: it arrives
-        drawn = wait_for(lambda: self.red_near(BOX_AT, 'box') > 100, 10, poll=0.5)
+        drawn = wait_for(lambda: self.red_near(BOX_AT, 'box') > 100, PAGE, poll=0.5)
         self.assertTrue(drawn, 'the spawned box is not drawn')
         x, y = self.pixel(BOX_AT)
         self.browser.click(x, y)
         self.assertTrue(
-            self.browser.wait_js(page_has_js('links: link'), 10), 'no model info on the page'
+            self.browser.wait_js(page_has_js('links: link'), PAGE), 'no model info on the page'
         )
         self.assertIn(BOX, self.browser.js('document.body.innerText'))
         self.assertTrue(self.shown_at(self.box_at()), 'the page shows another position')
@@ -168,7 +170,7 @@ class WebViewControls(WorldTestCase):
         grab, release = (start + (0.0, d, 0.0) for d in (GRAB * HANDLE, GRAB * HANDLE + DRAG))
         a, b = self.pixel(grab), self.pixel(release)
         self.browser.drag([a + (b - a) * k / 3 for k in range(4)])  # pressed, moved, released
-        moved = wait_for(lambda: self.box_at()[1] - start[1] > DRAG / 2, 10)
+        moved = wait_for(lambda: self.box_at()[1] - start[1] > DRAG / 2, PAGE)
         self.assertTrue(moved, 'the box did not move: %s' % self.box_at())
         time.sleep(0.5)
         end = self.box_at()
@@ -176,13 +178,13 @@ class WebViewControls(WorldTestCase):
         self.assertAlmostEqual(end[0], start[0], delta=0.01, msg='moved off the y axis')
         self.assertAlmostEqual(end[2], start[2], delta=0.01, msg='moved off the y axis')
         # the page's readout follows the model
-        self.assertTrue(wait_for(lambda: self.shown_at(end), 10), 'the page shows an old pose')
+        self.assertTrue(wait_for(lambda: self.shown_at(end), PAGE), 'the page shows an old pose')
 
     def test_05_reset_world_puts_models_back_and_time_goes_on(self):
         self.assertGreater(abs(self.box_at()[1] - BOX_AT[1]), 0.02, 'the box was not moved')
         before = self.world().sim_time
         click_button(self.browser, 'Reset world')
-        back = wait_for(lambda: np.abs(self.box_at() - BOX_AT).max() < 0.005, 10)
+        back = wait_for(lambda: np.abs(self.box_at() - BOX_AT).max() < 0.005, PAGE)
         self.assertTrue(back, 'the box is not back: %s' % self.box_at())
         self.assertGreaterEqual(self.world().sim_time, before, 'Reset world reset time')
 
@@ -190,13 +192,13 @@ class WebViewControls(WorldTestCase):
         self.assertTrue(wait_for(lambda: self.world().sim_time > 1.0, 30), 'time stands still')
         self.pause()  # time stays at the reset's, so the page can be read at leisure
         click_button(self.browser, 'Reset simulation')
-        self.assertTrue(wait_for(lambda: self.world().sim_time == 0.0, 10), 'time is not 0')
-        shown = self.browser.wait_js(page_has_js('sim time 0.000 s'), 10)
+        self.assertTrue(wait_for(lambda: self.world().sim_time == 0.0, PAGE), 'time is not 0')
+        shown = self.browser.wait_js(page_has_js('sim time 0.000 s'), PAGE)
         self.assertTrue(shown, 'the page does not show the reset time')
         np.testing.assert_allclose(self.box_at(), BOX_AT, atol=0.005)
         mark = time.monotonic()
         self.play()
-        zeroed = wait_for(lambda: any(c.clock.to_sec() < 0.5 for c in self.clock.since(mark)), 10)
+        zeroed = wait_for(lambda: any(c.clock.to_sec() < 0.5 for c in self.clock.since(mark)), PAGE)
         self.assertTrue(zeroed, '/clock does not go on from 0')
 
     # -- models arriving and leaving -----------------------------------------------------
@@ -204,10 +206,10 @@ class WebViewControls(WorldTestCase):
         self.assertGreater(self.red_near(BOX_AT, 'box_there'), 100, 'the box is not drawn')
         res = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)(BOX)
         self.assertTrue(res.success, res.status_message)
-        gone = wait_for(lambda: self.red_near(BOX_AT, 'box_gone') < 5, 20, poll=0.5)
+        gone = wait_for(lambda: self.red_near(BOX_AT, 'box_gone') < 5, PAGE, poll=0.5)
         self.assertTrue(gone, 'the deleted box is still drawn')
         self.assertTrue(
-            self.browser.wait_js('!' + page_has_js('links: link'), 10),
+            self.browser.wait_js('!' + page_has_js('links: link'), PAGE),
             'the page still shows the deleted model',
         )
         spawn_box(RESPAWN_AT)
@@ -217,7 +219,7 @@ class WebViewControls(WorldTestCase):
             old, new = project([BOX_AT, RESPAWN_AT], shot.shape[1], shot.shape[0])
             return red_pixels(shot, new, 30) > 100 and red_pixels(shot, old, 30) < 5
 
-        self.assertTrue(wait_for(drawn_again, 20, poll=0.5), 'not drawn where it was spawned')
+        self.assertTrue(wait_for(drawn_again, PAGE, poll=0.5), 'not drawn where it was spawned')
 
     # -- a controller's slider (issue 23's done-when, robot_spawn's position controllers) --
     def test_08_a_slider_moves_its_joint(self):
@@ -234,7 +236,7 @@ class WebViewControls(WorldTestCase):
             return abs(positions(self.states.last())['joint1'] - target) < 0.02
 
         self.assertTrue(wait_for(there, 60), 'joint1 did not follow its slider to %.2f' % target)
-        text = self.browser.wait_js(page_has_js('command %.3f' % target), 10)
+        text = self.browser.wait_js(page_has_js('command %.3f' % target), PAGE)
         self.assertTrue(text, 'the page does not show the new command')
 
 

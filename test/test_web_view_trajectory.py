@@ -42,7 +42,7 @@ class WebViewTrajectory(WorldTestCase):
         # the first slider is joint1's: Home puts it at its minimum, the joint's lower limit
         self.browser.js("document.querySelectorAll('[role=slider]')[0].focus()")
         self.browser.key('Home', 'Home', 36)
-        self.assertTrue(wait_for(self.commands.last, 20), 'nothing on arm_controller/command')
+        self.assertTrue(wait_for(self.commands.last, 60), 'nothing on arm_controller/command')
         goal = self.commands.last()
         self.assertEqual(list(goal.joint_names), JOINTS)
         self.assertEqual(len(goal.points), 1)
@@ -56,7 +56,7 @@ class WebViewTrajectory(WorldTestCase):
             return abs(positions(self.states.last())['joint1'] - LOWER) < TOL
 
         self.assertTrue(wait_for(there, 60), 'joint1 did not follow its slider')
-        shown = self.browser.wait_js(page_has_js('command %.3f' % LOWER), 10)
+        shown = self.browser.wait_js(page_has_js('command %.3f' % LOWER), 60)
         self.assertTrue(shown, 'the page does not show the new command')
 
 

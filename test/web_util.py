@@ -77,7 +77,7 @@ def open_page(url, ready_text, timeout=120):
     return browser
 
 
-def click_button(browser, text, timeout=10):
+def click_button(browser, text, timeout=60):
     """A mouse click in the middle of the page's button labelled ``text``."""
     rect = browser.wait_js(rect_js(button(text)), timeout)
     assert rect, 'no button %r on the page' % text
@@ -97,7 +97,7 @@ def viewport(browser):
     return browser.js('[window.innerWidth, window.innerHeight]')
 
 
-def wait_drawn(browser, name, timeout=60):
+def wait_drawn(browser, name, timeout=120):
     """The page once its scene is drawn the same twice, half a second apart (software WebGL
     takes seconds to light a new page: a screenshot before then is washed out), as
     ``screenshot`` gives it; None if it never settled."""
