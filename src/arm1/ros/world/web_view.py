@@ -37,7 +37,7 @@ from .web_snapshot import (
 )
 from .world_loop import WorldLoop
 
-FRAME_PERIOD = 1 / 40.0  # s of wall time between two scene updates (the view asks >= 30 fps)
+FRAME_PERIOD = 1 / 32.0  # s of wall time between two scene updates (the view asks >= 30 fps)
 PANEL_PERIOD = 0.2  # s: status text, joint readouts, plots and camera images
 PLOT_SECONDS = 10.0  # of sim time shown by each joint plot
 CAMERA_PERIOD = 0.2  # s of wall time between two camera images rendered for the page
