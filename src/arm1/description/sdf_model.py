@@ -593,8 +593,7 @@ def parse_sdf_text(
     """The ``<model>`` element of an SDF document from a request, parsed as hostile input
     (or its ``<robot>`` root: URDF)."""
     limits = limits or Limits()
-    size = len(xml_text.encode('utf-8', 'surrogatepass'))
-    _check(limits, 'description_bytes', size, what)
+    _check(limits, 'description_bytes', safe_xml.utf8_size(xml_text), what)
     budget = int(ELEMENTS_PER_PART * (limits.links_per_model + limits.joints_per_model))
     try:
         root = safe_xml.parse(xml_text, what, budget)
