@@ -12,8 +12,7 @@ import sys
 import time
 from typing import Any, Dict
 
-from .big_goal import WINDOW, _pace
-from .launched import launch_and_wait, record_clock
+from .launched import WINDOW, clock_pace, launch_and_wait, record_clock
 
 BULK = 50 * 1000 * 1000  # characters of padding: inside the 64 MiB description_bytes
 _BOX = '<geometry><box size="0.01 0.01 0.01"/></geometry>'
@@ -85,8 +84,8 @@ def big_description_bench() -> Dict[str, Any]:
         answered = time.perf_counter()
         time.sleep(1.0)
         end = time.perf_counter()
-        gap_during, rtf_during = _pace([m for m in clock if m[0] < end], during)
-        gap_before, rtf_before = _pace([m for m in clock if m[0] < during], before)
+        gap_during, rtf_during = clock_pace([m for m in clock if m[0] < end], during)
+        gap_before, rtf_before = clock_pace([m for m in clock if m[0] < during], before)
         rospy.signal_shutdown('measured')
     if ' answered True' not in client.stdout:
         raise RuntimeError('the big description was not spawned: %s' % client.stdout[-2000:])

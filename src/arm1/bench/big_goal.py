@@ -8,22 +8,13 @@ from __future__ import annotations
 import subprocess
 import sys
 import time
-from typing import Any, Dict, List, Tuple
+from typing import Any, Dict
 
-from .launched import launch_and_wait, record_clock
+from .launched import WINDOW, clock_pace, launch_and_wait, record_clock
 
 ACTION = '/arm1/arm_controller/follow_joint_trajectory'
 JOINTS = ('joint1', 'joint2', 'joint3', 'joint4')
 START = (0.0, 0.5, 0.3, 0.2)  # rad: the pose every point holds
-WINDOW = 4.0  # wall s watched before, and from the send on
-
-
-def _pace(clock: List[Tuple[float, float]], since: float) -> Tuple[float, float]:
-    """(longest gap between /clock arrivals in wall s, real-time factor) after ``since``."""
-    msgs = [m for m in clock if m[0] >= since]
-    gaps = [b[0] - a[0] for a, b in zip(msgs, msgs[1:])]
-    rtf = (msgs[-1][1] - msgs[0][1]) / max(msgs[-1][0] - msgs[0][0], 1e-9)
-    return max(gaps), rtf
 
 
 def big_goal(count: int) -> Dict[str, Any]:
@@ -46,8 +37,8 @@ def big_goal(count: int) -> Dict[str, Any]:
         )
         time.sleep(WINDOW)
         client.wait(120)
-        gap_during, rtf_during = _pace([m for m in clock if m[0] < during + WINDOW], during)
-        gap_before, rtf_before = _pace([m for m in clock if m[0] < during], before)
+        gap_during, rtf_during = clock_pace([m for m in clock if m[0] < during + WINDOW], during)
+        gap_before, rtf_before = clock_pace([m for m in clock if m[0] < during], before)
         rospy.signal_shutdown('measured')
     return {
         'points': count,

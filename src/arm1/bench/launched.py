@@ -8,6 +8,7 @@ from typing import Any, Dict, List, Tuple
 from .probes import cpu_seconds, peak_rss_mb
 
 PROBE = '/bench_probe'
+WINDOW = 4.0  # wall s a pace is watched over, before a hostile request and from its send on
 
 
 def launch_and_wait(session: Any, *args: str, timeout: float = 60) -> None:
@@ -30,6 +31,14 @@ def record_clock() -> List[Tuple[float, float]]:
         '/clock', Clock, lambda m: clock.append((time.perf_counter(), m.clock.to_sec()))
     )
     return clock
+
+
+def clock_pace(clock: List[Tuple[float, float]], since: float) -> Tuple[float, float]:
+    """(longest gap between /clock arrivals in wall s, real-time factor) after ``since``."""
+    msgs = [m for m in clock if m[0] >= since]
+    gaps = [b[0] - a[0] for a, b in zip(msgs, msgs[1:])]
+    rtf = (msgs[-1][1] - msgs[0][1]) / max(msgs[-1][0] - msgs[0][0], 1e-9)
+    return max(gaps), rtf
 
 
 def startup() -> Dict[str, Any]:
