@@ -125,7 +125,6 @@ class SceneModel:
             scene.add_frame('%s/%d' % (self.root, i), show_axes=False)
             for i in range(len(model.links))
         ]
-        self.meshes: List[Any] = []
         self._shown: List[Optional[Pose]] = [None] * len(self.frames)
         for k, v in enumerate(visuals):
             mesh = view.meshes.get(v)
@@ -150,7 +149,6 @@ class SceneModel:
                 )
             if not model.static:
                 handle.on_click(_selector(view, model.name))
-            self.meshes.append(handle)
         self.move(model.poses)
 
     def move(self, poses: Tuple[Pose, ...]) -> None:
