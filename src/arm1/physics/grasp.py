@@ -24,6 +24,7 @@ from typing import Callable, Dict, Hashable, List, Optional, Sequence, Set, Tupl
 
 import pybullet as p
 
+from .carry import norm, opposing
 from .link_motion import Vec3, add, scale, sub
 from .robot import Robot
 from .sim_sensor import SimSensor
@@ -35,8 +36,6 @@ DEFAULT_FORCES_ANGLE_TOLERANCE = 120.0  # degrees
 DEFAULT_UPDATE_RATE = 5.0  # Hz
 DEFAULT_MAX_GRIP_COUNT = 10
 DEFAULT_RELEASE_TOLERANCE = 0.005  # m
-# CheckGrip's: the weaker of two opposing forces must be at least this part of the stronger
-FORCE_LENGTH_RATIO = 0.3
 # What the fixed joint may pull with, N (Gazebo's joint is rigid)
 ATTACH_MAX_FORCE = 1e5
 # pybullet's collision filter of a dynamic link (btBroadphaseProxy DefaultFilter, AllFilter):
@@ -75,32 +74,6 @@ class Touch:
 
     def mean(self, total: Vec3) -> Vec3:
         return scale(total, 1.0 / self.count)
-
-
-def _length(v: Vec3) -> float:
-    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-
-
-def opposing(forces: Sequence[Vec3], min_angle: float, ratio: float = FORCE_LENGTH_RATIO) -> bool:
-    """Upstream's CheckGrip: two of the forces more than ``min_angle`` apart, the weaker at
-    least ``ratio`` of the stronger (forces under 1e-4 N count as none)."""
-    if min_angle < math.pi / 2:
-        return False  # upstream refuses (and says so each time; here once, at load)
-    for i, a in enumerate(forces):
-        la = _length(a)
-        if la < 1e-4:
-            continue
-        for b in forces[i + 1 :]:
-            lb = _length(b)
-            if lb < 1e-4:
-                continue
-            cos = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb)
-            if (
-                math.acos(max(-1.0, min(1.0, cos))) > min_angle
-                and min(la, lb) / max(la, lb) >= ratio
-            ):
-                return True
-    return False
 
 
 # (object, link, the link's first contact point in its frame) -> that point's distance from
@@ -195,7 +168,7 @@ class GraspLogic:
         release_tolerance nearer to or farther from it?"""
         for link, t in self.attach_contacts.get(obj, {}).items():
             contact, origin = t.mean(t.position), t.mean(t.object_position)
-            before = _length(sub(contact, origin))
+            before = norm(sub(contact, origin))
             if abs(before - distance_now(obj, link, contact)) > self.params.release_tolerance:
                 return True
         return False
@@ -345,7 +318,7 @@ class GraspFix(SimSensor):
         cid = self.robot.client
         pos, orn = self._pose(self.robot.body, link)
         point = p.multiplyTransforms(pos, orn, contact, (0, 0, 0, 1), physicsClientId=cid)[0]
-        return _length(sub(tuple(point), tuple(self._pose(*obj)[0])))
+        return norm(sub(tuple(point), tuple(self._pose(*obj)[0])))
 
     def _attach(self, arm: str, obj: ObjectKey) -> None:
         """A fixed joint from the palm to the object where it is now (GazeboGraspGripper's

@@ -5,6 +5,7 @@ import itertools
 import pybullet as p
 
 from . import mimic
+from .carry import CARRY_MIN_CHANGE, JumpCarrier
 
 IDENTITY = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 # How near its last target (m or rad) a position-driven joint counts as having reached it.
@@ -222,13 +223,14 @@ class Robot:
         (what the joint pushes an obstacle with). A joint that reached its last target moves
         freely: its velocity is set to that too, so its inertia costs no step; one held back
         (blocked, or its force too small) or just teleported (spawn, reset) gets the motor
-        alone, not a kick into the obstacle."""
+        alone, not a kick into the obstacle. What the links grip takes the same jump (carry)."""
         if not indices:
             return
         cid = self.client
         states = p.getJointStates(self.body, indices, physicsClientId=cid)
         velocities, free, free_pos, free_vel = [], [], [], []
         targets = self._position_targets
+        jump = 0.0
         for i, target, state in zip(indices, positions, states):
             position = state[0]
             velocity = (target - position) / dt
@@ -238,8 +240,10 @@ class Robot:
                 free.append(i)
                 free_pos.append([position])
                 free_vel.append([velocity])
+                jump = max(jump, abs(velocity - state[1]))
             targets[i] = target
         if free:
+            carrier = JumpCarrier(cid, self.body) if jump > CARRY_MIN_CHANGE else None
             p.resetJointStatesMultiDof(
                 self.body,
                 free,
@@ -247,6 +251,8 @@ class Robot:
                 targetVelocities=free_vel,
                 physicsClientId=cid,
             )
+            if carrier is not None:
+                carrier.after()
         p.setJointMotorControlArray(
             self.body,
             indices,
