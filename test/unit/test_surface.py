@@ -219,3 +219,25 @@ def test_a_child_links_friction_is_applied_too():
         assert finger[1] == pytest.approx(0.3**0.5) and base[1] == pytest.approx(1.0)
     finally:
         sim.close()
+
+
+# franka_description's fingers say their surface as a <collision> block inside the reference
+FINGER = (
+    '<gazebo reference="l"><collision><max_contacts>10</max_contacts><surface><contact><ode>'
+    '<max_vel>0</max_vel><min_depth>0.001</min_depth></ode></contact><friction><ode>'
+    '<mu>1.13</mu><mu2>1.13</mu2></ode></friction><bounce/></surface></collision></gazebo>'
+)
+
+
+def test_a_collision_block_in_a_gazebo_reference_gives_the_links_surface():
+    # sdformat's URDF reader inserts it into each of the link's collisions
+    urdf = '<robot name="r"><link name="l"/>%s</robot>' % FINGER
+    _, options = prepare_body(urdf, parse_urdf(urdf), 'r')
+    assert options.surfaces['l'] == Surface(mu=1.13, mu2=1.13)
+    # a flat tag of the link is written over the block's value, as sdformat does
+    urdf = '<robot name="r"><link name="l"/>%s<gazebo reference="l"><mu1>0.5</mu1></gazebo></robot>'
+    _, options = prepare_body(urdf % FINGER, parse_urdf(urdf % FINGER), 'r')
+    assert options.surfaces['l'].mu == 0.5 and options.surfaces['l'].mu2 == 1.13
+    bad = FINGER.replace('<mu>1.13</mu>', '<mu>lots</mu>')
+    with pytest.raises(UrdfError, match="reference='l'.*collision.*friction/ode/mu"):
+        parse_urdf('<robot name="r"><link name="l"/>%s</robot>' % bad)

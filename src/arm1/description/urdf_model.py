@@ -19,6 +19,7 @@ from .joint_limits import JointLimits, SoftLimits, canonical_interface
 from .limits import LimitError, Limits
 from .mesh_limits import MESH_EXTENSIONS, MeshError, count_triangles, mesh_kind
 from .names import shown
+from .surface import SurfaceError, sdf_surface_tags
 
 ACTUATED_TYPES = ('revolute', 'continuous', 'prismatic')
 CONTROL_PLUGIN = 'libgazebo_ros_control.so'
@@ -353,6 +354,7 @@ def parse_urdf(
             )
         )
     model = RobotModel(root.get('name') or '', roots[0], links, joints, transmissions)
+    blocks: Dict[str, Dict[str, str]] = {}  # reference -> the tags its <collision>s' <surface> say
     for g in root.findall('gazebo'):
         ref = g.get('reference')
         if ref is None:
@@ -375,10 +377,28 @@ def parse_urdf(
                     model.sensors.append((ref, child))
                 else:
                     model.unplaced_sensors.append((ref, child))
+            elif child.tag == 'collision':
+                said = blocks.setdefault(ref, {})
+                said.update(_collision_block(child, "<gazebo reference='%s'> <collision>" % ref))
             else:
                 tags[child.tag] = (child.text or '').strip()
+    # sdformat writes a reference's flat tags (mu1, kp, ...) over its <collision> blocks'
+    for ref, said in blocks.items():
+        for tag, text in said.items():
+            model.gazebo_refs[ref].setdefault(tag, text)
     model.mimics = _checked_mimics(mimics, joints)
     return model
+
+
+def _collision_block(block: ET.Element, where: str) -> Dict[str, str]:
+    """A ``<gazebo reference>``'s ``<collision>`` block: sdformat's URDF reader inserts its
+    children into every collision of the link; its ``<surface>`` becomes the link's tags
+    (pybullet has one surface per link). Its other children (max_contacts, ...) have no
+    pybullet setting."""
+    try:
+        return sdf_surface_tags(block.find('surface'), where)
+    except SurfaceError as exc:
+        raise UrdfError(str(exc)) from None
 
 
 def _stripped(text: Optional[str]) -> Optional[str]:
