@@ -71,7 +71,12 @@ def test_profiles_are_consistent():
         assert len(g.open_position) == len(g.closed_position)
         if g.kind == 'topics':
             assert len(g.arm_topics) == len(g.arm_joints) and g.gripper_topic
+        elif g.kind == 'franka':
+            # widths: the hand opens to 80 mm; a grasp needs a speed and a force
+            assert g.open_position == (0.08,) and 0 < g.closed_position[0] < 0.08
+            assert g.grasp_speed > 0 and g.grasp_force > 0 and g.arm_action
         else:
+            assert g.kind == 'trajectory'
             assert len(g.finger_joints) == len(g.open_position) and g.arm_action
 
 
@@ -93,6 +98,29 @@ def test_command_line():
     assert a.lift == [0, 0, 0.3, 0, 0, 0]
     with pytest.raises(SystemExit):
         grasp_cli.parse_args(['ur5', '/src/x', 'pkg', 'x.launch'])
+
+
+def test_profile_overrides():
+    def profile(*more):
+        return grasp_cli.profile(grasp_cli.parse_args(list(more)))
+
+    # a franka grasp names the box's width: --size sets it, --closed wins over it
+    assert profile('panda', '/f', 'franka_gazebo', 'panda.launch').closed_position == (0.04,)
+    g = profile('panda', '/f', 'franka_gazebo', 'panda.launch', '--size', '0.03')
+    assert g.closed_position == (0.03,)
+    g = profile(
+        'panda', '/f', 'franka_gazebo', 'panda.launch', '--size', '0.03', '--closed', '0.02'
+    )
+    assert g.closed_position == (0.02,)
+    # other grippers keep their closing command whatever the box
+    g = profile(
+        'tb3_omx', '/t', 'pkg', 'x.launch', '--size', '0.02', '--lift', '0', '-0.3', '0', '0.3'
+    )
+    assert g.closed_position == (-0.01,) and g.lift == (0, -0.3, 0, 0.3)
+    with pytest.raises(SystemExit):
+        profile('tb3_omx', '/t', 'pkg', 'x.launch', '--lift', '0.1')
+    with pytest.raises(SystemExit):
+        profile('panda', '/f', 'pkg', 'x.launch', '--closed', '0.02', '0.02')
 
 
 def test_angle_between_orientations():

@@ -26,7 +26,10 @@ class Gripper:
 
     ``kind`` 'topics': std_msgs/Float64 on ``gripper_topic`` and one Float64 topic per arm
     joint (``arm_topics``); 'trajectory': FollowJointTrajectory actions ``gripper_action`` over
-    ``finger_joints`` and ``arm_action`` over ``arm_joints``.
+    ``finger_joints`` and ``arm_action`` over ``arm_joints``; 'franka': franka_gripper's own
+    actions under ``gripper_action`` (``move`` to the open width, ``grasp`` at the box's width
+    with ``grasp_epsilon``, ``grasp_speed``, ``grasp_force``; positions are widths) and the
+    arm's FollowJointTrajectory ``arm_action``.
     """
 
     name: str
@@ -44,8 +47,12 @@ class Gripper:
     gripper_topic: str = ''
     arm_topics: Tuple[str, ...] = ()
     finger_joints: Tuple[str, ...] = ()  # the finger joints (reported through the hold)
+    follower_joints: Tuple[str, ...] = ()  # fingers a mimic plugin moves (reported too)
     gripper_action: str = ''
     arm_action: str = ''
+    grasp_epsilon: float = 0.0  # kind 'franka': the grasp's inner and outer tolerance (m)
+    grasp_speed: float = 0.0  # m/s
+    grasp_force: float = 0.0  # N
     notes: Dict[str, str] = field(default_factory=dict)
 
     def lifted(self) -> Tuple[float, ...]:
@@ -95,7 +102,62 @@ JACO = Gripper(
     arm_action='/%s/effort_joint_trajectory_controller/follow_joint_trajectory' % _J,
 )
 
-GRIPPERS = {g.name: g for g in (OMX, JACO)}
+# Franka Emika Panda (franka_gazebo panda.launch controller:=effort_joint_trajectory_controller):
+# the hand through franka_gripper's move and grasp actions, as a franka_ros user drives it (a
+# grasp at the object's width, +-5 mm, 0.1 m/s, 10 N), the arm through its effort trajectory
+# controller. The hand link is lumped into link7 (fixed joints, as Gazebo lumps them), turned
+# 45 degrees about its axis from the fingers: the slip is measured in the left finger's frame,
+# which is the hand's. The rubber pads sit 36-54.5 mm along the finger links' z (the hand's
+# axis, pointing down at the start pose): the box's centre 45 mm from the finger origins.
+# Start pose: panda.launch's own (the hand down, its TCP at 0.307, 0, 0.487 m); the lift:
+# joints 2, 4 and 6 raise the TCP 60 mm straight up, the hand level (pybullet kinematics of
+# its URDF at the start pose).
+PANDA = Gripper(
+    name='panda',
+    model='panda',
+    kind='franka',
+    palm_link='panda_leftfinger',
+    finger_links=('panda_leftfinger', 'panda_rightfinger'),
+    offset=(0.0, 0.0, 0.045),
+    open_position=(0.08,),
+    closed_position=(0.04,),  # the grasp's width: the box's
+    arm_joints=tuple('panda_joint%d' % i for i in range(1, 8)),
+    start=(0.0, -0.785398163, 0.0, -2.35619449, 0.0, 1.57079632679, 0.785398163397),
+    lift=(0.0, 0.0521, 0.0, 0.1894, 0.0, -0.1373, 0.0),
+    box_size=0.04,
+    finger_joints=('panda_finger_joint1', 'panda_finger_joint2'),
+    gripper_action='/franka_gripper',
+    arm_action='/effort_joint_trajectory_controller/follow_joint_trajectory',
+    grasp_epsilon=0.005,
+    grasp_speed=0.1,
+    grasp_force=10.0,
+)
+
+# TurtleBot3 Waffle Pi with OpenMANIPULATOR-X (turtlebot3_manipulation_gazebo): its
+# arm_controller (position JointTrajectoryController over gazebo_ros_control pid_gains) and
+# gripper_controller (effort JointTrajectoryController of `gripper`; the roboticsgroup mimic
+# plugin moves gripper_sub). The arm and fingers are OpenMANIPULATOR-X's (as omx: pads 24-65 mm
+# ahead of the finger links, joint2 -0.4 and joint4 +0.4 rad raise the palm level).
+TB3_OMX = Gripper(
+    name='tb3_omx',
+    model='robot',
+    kind='trajectory',
+    palm_link='link5',
+    finger_links=('gripper_link', 'gripper_link_sub'),
+    offset=(0.045, 0.0, 0.0),
+    open_position=(0.019,),
+    closed_position=(-0.01,),
+    arm_joints=('joint1', 'joint2', 'joint3', 'joint4'),
+    start=(0.0, 0.0, 0.0, 0.0),
+    lift=(0.0, -0.4, 0.0, 0.4),
+    box_size=0.03,
+    finger_joints=('gripper',),
+    follower_joints=('gripper_sub',),
+    gripper_action='/gripper_controller/follow_joint_trajectory',
+    arm_action='/arm_controller/follow_joint_trajectory',
+)
+
+GRIPPERS = {g.name: g for g in (OMX, JACO, PANDA, TB3_OMX)}
 
 
 def rotate(q: Quat, v: Vec) -> Vec:

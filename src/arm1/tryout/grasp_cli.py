@@ -3,6 +3,8 @@
     rosrun arm1 try_grasp omx ~/src/open_manipulator_simulations \\
         --also ~/src/open_manipulator open_manipulator_gazebo open_manipulator_gazebo.launch
     rosrun arm1 try_grasp jaco ~/src/kinova-ros kinova_gazebo robot_launch.launch
+    rosrun arm1 try_grasp panda ~/src/franka_ros franka_gazebo panda.launch \\
+        controller:=effort_joint_trajectory_controller
 
 Builds and brings the robot up as try_robot does, then per try: a box between the open fingers
 (on a thin static column), the gripper closed and the arm lifted through the package's own
@@ -27,7 +29,9 @@ def parse_args(argv: Optional[List[str]]) -> argparse.Namespace:
     robot, rest = argv[0], argv[1:]
     own = argparse.ArgumentParser(add_help=False)
     own.add_argument('--tries', type=int, default=3)
-    own.add_argument('--size', type=float, help='box edge (m); 0.03 for omx, 0.04 for jaco')
+    own.add_argument(
+        '--size', type=float, help='box edge (m); 0.03 for omx and tb3_omx, 0.04 for jaco, panda'
+    )
     own.add_argument('--mass', type=float, default=0.03, help='box mass (kg)')
     own.add_argument('--mu', type=float, default=1.0, help="box's <mu1>/<mu2>")
     own.add_argument(
@@ -43,8 +47,9 @@ def parse_args(argv: Optional[List[str]]) -> argparse.Namespace:
     return a
 
 
-def main(argv: Optional[List[str]] = None) -> int:
-    a = parse_args(argv)
+def profile(a: argparse.Namespace) -> grasp.Gripper:
+    """The robot's profile with the command line's --lift and --closed (or, for a franka
+    grasp, --size: the grasp names the object's width)."""
     g = grasp.GRIPPERS[a.robot]
     if a.lift:
         if len(a.lift) != len(g.arm_joints):
@@ -57,6 +62,14 @@ def main(argv: Optional[List[str]] = None) -> int:
         if len(a.closed) != len(g.closed_position):
             raise SystemExit('try_grasp: --closed takes %d values' % len(g.closed_position))
         g = dataclasses.replace(g, closed_position=tuple(a.closed))
+    elif g.kind == 'franka' and a.size:
+        g = dataclasses.replace(g, closed_position=(a.size,))
+    return g
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    a = parse_args(argv)
+    g = profile(a)
 
     def work(progress: cli.Progress) -> dict:
         from arm1.tryout import grasp_ros

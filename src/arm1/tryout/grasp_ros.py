@@ -4,7 +4,7 @@ the arm through the package's own controllers, hold, judge (grasp.judge_lift).""
 
 import argparse
 import math
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import rospy
 
@@ -20,6 +20,8 @@ class Arm:
 
     def __init__(self, g: grasp.Gripper, timeout: float) -> None:
         self.g = g
+        self.last_grip_error = ''  # a franka_gripper goal's error, reported with the try
+        self.last_move = ''  # how the last arm goal ended (trajectory actions)
         if g.kind == 'topics':
             from std_msgs.msg import Float64
 
@@ -32,11 +34,19 @@ class Arm:
             import actionlib
             from control_msgs.msg import FollowJointTrajectoryAction
 
+            actions: List[Tuple[str, Any]] = [(g.arm_action, FollowJointTrajectoryAction)]
+            if g.kind == 'franka':
+                from franka_gripper.msg import GraspAction, MoveAction
+
+                actions += [(g.gripper_action + '/move', MoveAction)]
+                actions += [(g.gripper_action + '/grasp', GraspAction)]
+            else:
+                actions += [(g.gripper_action, FollowJointTrajectoryAction)]
             self.clients = {}
-            for ns in (g.arm_action, g.gripper_action):
-                c = actionlib.SimpleActionClient(ns, FollowJointTrajectoryAction)
+            for ns, action in actions:
+                c = actionlib.SimpleActionClient(ns, action)
                 if not c.wait_for_server(rospy.Duration(timeout)):
-                    raise RuntimeError('no FollowJointTrajectory action server at %s' % ns)
+                    raise RuntimeError('no %s server at %s' % (action.__name__, ns))
                 self.clients[ns] = c
         rospy.sleep(0.5)  # subscribers connect
 
@@ -55,9 +65,34 @@ class Arm:
         ]
         self.clients[ns].send_goal(goal)
 
+    def _franka(self, width: float, seconds: float) -> None:
+        """franka_gripper's move to the open width, or a grasp at width (the object's)."""
+        from franka_gripper.msg import GraspEpsilon, GraspGoal, MoveGoal
+
+        g = self.g
+        self.last_grip_error = ''
+        if width >= g.open_position[0]:
+            ns, goal = g.gripper_action + '/move', MoveGoal(width=width, speed=g.grasp_speed)
+        else:
+            eps = GraspEpsilon(inner=g.grasp_epsilon, outer=g.grasp_epsilon)
+            ns = g.gripper_action + '/grasp'
+            goal = GraspGoal(width=width, epsilon=eps, speed=g.grasp_speed, force=g.grasp_force)
+        c = self.clients[ns]
+        c.send_goal(goal)
+        # the hand answers once its fingers stop (success: within epsilon of the width)
+        if not c.wait_for_result(rospy.Duration(seconds + 5.0)):
+            raise RuntimeError('%s: no result within %.1f s' % (ns, seconds + 5.0))
+        r = c.get_result()
+        if r is not None and not r.success:
+            self.last_grip_error = '%s: %s' % (ns, r.error or 'not successful')
+
     def grip(self, positions: tuple, seconds: float) -> None:
         if self.g.kind == 'topics':
             self.gripper.publish(self.msg(positions[0]))
+        elif self.g.kind == 'franka':
+            self._franka(positions[0], seconds)
+            rospy.sleep(0.5)
+            return
         else:
             self._goal(self.g.gripper_action, self.g.finger_joints, positions, seconds)
         rospy.sleep(seconds + 0.5)
@@ -72,8 +107,23 @@ class Arm:
                 rospy.sleep(seconds / n)
         else:
             self._goal(self.g.arm_action, self.g.arm_joints, to, seconds)
-            self.clients[self.g.arm_action].wait_for_result(rospy.Duration(seconds + 5.0))
+            c = self.clients[self.g.arm_action]
+            c.wait_for_result(rospy.Duration(seconds + 5.0))
+            self.last_move = goal_outcome(c.get_state(), c.get_result())
         rospy.sleep(0.5)
+
+
+def goal_outcome(state: int, result: Any) -> str:
+    """A FollowJointTrajectory goal's end: its actionlib state and the result's error code."""
+    from actionlib_msgs.msg import GoalStatus
+    from control_msgs.msg import FollowJointTrajectoryResult as R
+
+    names = {v: k for k, v in vars(GoalStatus).items() if k.isupper() and isinstance(v, int)}
+    codes = {v: k for k, v in vars(R).items() if k.isupper() and isinstance(v, int)}
+    text = names.get(state, str(state))
+    if result is not None and result.error_code:
+        text += ' %s' % codes.get(result.error_code, result.error_code)
+    return text
 
 
 class Gazebo:
@@ -134,6 +184,7 @@ def one_try(
     log('  box %.0f mm at (%.3f, %.3f, %.3f)' % (size * 1e3, *centre))
     rospy.sleep(0.3)
     arm.grip(g.closed_position, 1.5)
+    grasp_error = arm.last_grip_error
     # the column goes once the fingers hold the box: nothing but the gripper carries it, and
     # no finger or arm can jam against a static body through the lift
     gz.remove(PEDESTAL)
@@ -144,13 +195,14 @@ def one_try(
     palm_p, palm_q = gz.pose(palm)
     in_palm_closed = grasp.to_frame(palm_p, palm_q, box_before)
     arm.move(g.start, g.lifted(), 2.0)
+    lift_goal = arm.last_move
     samples: List[tuple] = []
     fingers_seen: Dict[str, List[tuple]] = {}
     end = rospy.get_time() + grasp.HOLD_S
     while rospy.get_time() < end:
         pp, pq = gz.pose(palm)
         samples.append(grasp.to_frame(pp, pq, gz.pose(box)[0]))
-        for j in g.finger_joints:
+        for j in g.finger_joints + g.follower_joints:
             fingers_seen.setdefault(j, []).append(
                 (states.positions.get(j, math.nan), states.velocities.get(j, math.nan))
             )
@@ -176,14 +228,24 @@ def one_try(
         },
         box_turned_deg=round(grasp.angle_between(box_q0, box_q1) * 57.29578, 1),
     )
+    if grasp_error:
+        seen['grasp_error'] = grasp_error
+    if lift_goal:
+        seen['lift_goal'] = lift_goal
     arm.grip(g.open_position, 1.0)
     arm.move(g.lifted(), g.start, 2.0)
     gz.remove(BOX)
     gz.remove(PEDESTAL)
     return dict(
         v.as_dict(),
-        text='%s; turned %.1f deg; box in palm (mm) %s'
-        % (v, seen['box_turned_deg'], seen['box_in_palm_mm']),
+        text='%s; turned %.1f deg; box in palm (mm) %s%s%s'
+        % (
+            v,
+            seen['box_turned_deg'],
+            seen['box_in_palm_mm'],
+            '; ' + grasp_error if grasp_error else '',
+            '; lift goal ' + lift_goal if lift_goal else '',
+        ),
         **seen,
     )
 
