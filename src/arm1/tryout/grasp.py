@@ -43,6 +43,7 @@ class Gripper:
     arm_joints: Tuple[str, ...]
     start: Tuple[float, ...]  # arm pose the box is placed in
     lift: Tuple[float, ...]  # arm pose change that raises the gripper (palm kept level)
+    reach_s: float = 2.0  # sim seconds the arm is given to reach its start pose
     box_size: float = 0.03
     gripper_topic: str = ''
     arm_topics: Tuple[str, ...] = ()
@@ -81,6 +82,12 @@ OMX = Gripper(
 )
 
 # Kinova JACO2 j2n6s300 (kinova_gazebo robot_launch.launch): its effort trajectory controllers.
+# A pick from above: the palm faces down (link_6's z axis up), so the box on its column stands
+# below the hand and clear of every finger (its launch file's spawn pose holds the hand on its
+# side, fingers 2 and 3 under the box: the column ran through finger 3). The box's centre 18 mm
+# beyond the finger links' centroid and midway between finger 1 and fingers 2 and 3, where the
+# open fingers leave 15 mm or more on every side (ray tests on its meshes). The lift raises the
+# palm 60 mm straight up, level (joint deltas from inverse kinematics at the start pose).
 _J = 'j2n6s300'
 JACO = Gripper(
     name='jaco',
@@ -90,12 +97,14 @@ JACO = Gripper(
     finger_links=tuple(
         '%s_link_finger_%s%d' % (_J, part, i) for part in ('', 'tip_') for i in (1, 2, 3)
     ),
-    offset=(0.0, 0.0, 0.0),
+    offset=(0.0, 0.0135, -0.018),
     open_position=(0.0, 0.0, 0.0),
     closed_position=(1.3, 1.3, 1.3),
     arm_joints=tuple('%s_joint_%d' % (_J, i) for i in range(1, 7)),
-    start=(0.0, 2.9, 1.3, -2.07, 1.4, 0.0),  # its launch file's spawn pose
-    lift=(0.0, 0.0, 0.3, 0.0, 0.0, 0.0),  # joint3 alone: 106 mm (2 and 3 together cancel)
+    start=(-0.846, 3.694, 1.266, -2.925, -0.83, -0.63),  # palm down, 0.35 m above the ground
+    lift=(-0.004, -0.113, 0.096, 0.074, -0.249, 0.07),  # the palm 60 mm up, level
+    # from its launch file's spawn pose joint5 turns 2.2 rad, capped at 0.84 rad/s
+    reach_s=5.0,
     box_size=0.04,
     finger_joints=tuple('%s_joint_finger_%d' % (_J, i) for i in (1, 2, 3)),
     gripper_action='/%s/effort_finger_trajectory_controller/follow_joint_trajectory' % _J,

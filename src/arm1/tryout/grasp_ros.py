@@ -151,6 +151,46 @@ class Gazebo:
             pass
 
 
+class LinkStates:
+    """/gazebo/link_states while it lives: every pose from one message is from one step. Two
+    get_link_state calls are not (the world steps between them): an arm shaking by a fraction
+    of a millimetre at its own undamped gains (JACO2's) read as a box slipping 2 mm."""
+
+    def __init__(self, timeout: float) -> None:
+        from gazebo_msgs.msg import LinkStates as Msg
+
+        self._msg: Any = None
+        self._sub = rospy.Subscriber('/gazebo/link_states', Msg, self._cb, queue_size=1)
+        end = rospy.get_time() + timeout
+        while self._msg is None:
+            if rospy.get_time() > end or rospy.is_shutdown():
+                self.close()
+                raise RuntimeError('no /gazebo/link_states in %.0f s' % timeout)
+            rospy.sleep(0.05)
+
+    def _cb(self, msg: Any) -> None:
+        self._msg = msg
+
+    def poses(self, *links: str) -> List[tuple]:
+        """((x, y, z), (qx, qy, qz, qw)) of each link, all from the latest message."""
+        msg = self._msg
+        out = []
+        for link in links:
+            if link not in msg.name:
+                raise RuntimeError('%s not in /gazebo/link_states' % link)
+            p = msg.pose[msg.name.index(link)]
+            out.append(
+                (
+                    (p.position.x, p.position.y, p.position.z),
+                    (p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w),
+                )
+            )
+        return out
+
+    def close(self) -> None:
+        self._sub.unregister()
+
+
 def one_try(
     g: grasp.Gripper,
     arm: Arm,
@@ -164,7 +204,7 @@ def one_try(
     gz.remove(BOX)
     gz.remove(PEDESTAL)
     arm.grip(g.open_position, 1.5)
-    arm.move(g.start, g.start, 2.0)  # reset: the start pose, fingers open
+    arm.move(g.start, g.start, g.reach_s)  # reset: the start pose, fingers open
     fingers = [gz.pose('%s::%s' % (g.model, link))[0] for link in g.finger_links]
     _, palm_q = gz.pose('%s::%s' % (g.model, g.palm_link))
     centre, q = grasp.box_pose(fingers, palm_q, tuple(a.offset) if a.offset else g.offset)
@@ -191,26 +231,29 @@ def one_try(
     rospy.sleep(0.5)
     palm = '%s::%s' % (g.model, g.palm_link)
     box = BOX + '::link'
-    box_before, box_q0 = gz.pose(box)
-    palm_p, palm_q = gz.pose(palm)
-    in_palm_closed = grasp.to_frame(palm_p, palm_q, box_before)
-    arm.move(g.start, g.lifted(), 2.0)
-    lift_goal = arm.last_move
-    samples: List[tuple] = []
-    fingers_seen: Dict[str, List[tuple]] = {}
-    end = rospy.get_time() + grasp.HOLD_S
-    while rospy.get_time() < end:
-        pp, pq = gz.pose(palm)
-        samples.append(grasp.to_frame(pp, pq, gz.pose(box)[0]))
-        for j in g.finger_joints + g.follower_joints:
-            fingers_seen.setdefault(j, []).append(
-                (states.positions.get(j, math.nan), states.velocities.get(j, math.nan))
-            )
-        rospy.sleep(0.1)
-    box_after, box_q1 = gz.pose(box)
+    # palm and box from the same step, each time
+    links = LinkStates(10.0)
+    try:
+        (palm_p, palm_q), (box_before, box_q0) = links.poses(palm, box)
+        in_palm_closed = grasp.to_frame(palm_p, palm_q, box_before)
+        arm.move(g.start, g.lifted(), 2.0)
+        lift_goal = arm.last_move
+        samples: List[tuple] = []
+        fingers_seen: Dict[str, List[tuple]] = {}
+        end = rospy.get_time() + grasp.HOLD_S
+        while rospy.get_time() < end:
+            (pp, pq), (bp, _) = links.poses(palm, box)
+            samples.append(grasp.to_frame(pp, pq, bp))
+            for j in g.finger_joints + g.follower_joints:
+                fingers_seen.setdefault(j, []).append(
+                    (states.positions.get(j, math.nan), states.velocities.get(j, math.nan))
+                )
+            rospy.sleep(0.1)
+        (pp, pq), (box_after, box_q1) = links.poses(palm, box)
+    finally:
+        links.close()
     # the gripper's rise is the rise of the point where it gripped the box (the palm may
     # turn as the arm lifts: its origin's rise is not the fingers')
-    pp, pq = gz.pose(palm)
     w = grasp.rotate(pq, in_palm_closed)
     grip_after = (pp[0] + w[0], pp[1] + w[1], pp[2] + w[2])
     v = grasp.judge_lift(box_before, box_before, grip_after, box_after, samples)
