@@ -284,3 +284,38 @@ def test_position_commands_go_through_the_motion_generator_pids_and_stopping_hol
     held = positions(model, ARM)
     run(sim, 1.0)
     assert positions(model, ARM) == pytest.approx(held, abs=0.01)
+
+
+def test_a_mimic_finger_gets_no_effort_from_the_hardware():
+    """franka_description's finger_joint2 has a URDF <mimic> of finger_joint1: the mimic drives
+    it (issue 21: a follower gets no effort from the hardware interface), so an effort
+    command for it is not applied on top of the mimic's motor."""
+    from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE
+
+    sim = Simulation(read_world(WORLD_FILE))
+    text = toy_panda.urdf('toy').replace(
+        '<axis xyz="0 -1 0"/>', '<axis xyz="0 -1 0"/><mimic joint="toy_finger_joint1"/>'
+    )
+    assert '<mimic' in text
+    ros = FakeRos(dict(GAINS))
+    model = sim.spawn_urdf(
+        'toy',
+        text,
+        robot_namespace='/',
+        controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
+    )
+    try:
+        sim.set_model_configuration('toy', ARM + FINGERS, POSE + [0.02, 0.02])
+        model.hw.init_sim(ros.node_handle('/'), '/')
+        follower = model.hw.get_handle(FINGERS[1], EFFORT_JOINT_INTERFACE, '/test')
+        follower.command = 50.0  # would push it open at 50 N, were it applied
+        run(sim, 0.5)
+        index = model.robot.indices([FINGERS[1]])[0]
+        motor = p.getJointState(model.robot.body, index, physicsClientId=model.robot.client)[3]
+        # the mimic's motor holds the follower at its leader without fighting 50 N (what it
+        # does push: the free leader's and follower's own drift as the arm holds its pose)
+        assert abs(motor) < 5.0
+        leader, follower_q = positions(model, FINGERS)
+        assert follower_q == pytest.approx(leader, abs=1e-4)
+    finally:
+        sim.close()

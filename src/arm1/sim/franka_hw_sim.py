@@ -201,6 +201,11 @@ class FrankaHWSim:
         self._by_name = {j.name: j for j in self._joints}
         self.arm = [self._by_name[n] for n in state_joints]
         self._indices = [j.index for j in self._joints]
+        # A mimic follower (franka_description's finger_joint2 has a URDF <mimic>) is read but
+        # never written: physics.mimic drives it, an effort from here would fight its motor.
+        followers = {m.follower for m in description.mimics}
+        self._written = [j for j in self._joints if j.name not in followers]
+        self._written_indices = [j.index for j in self._written]
         try:
             self.dynamics = BodyDynamics(robot, state_joints, self.root_link)
         except (KeyError, ValueError) as exc:
@@ -437,7 +442,7 @@ class FrankaHWSim:
         for j, g in zip(self.arm, gravity):
             j.gravity = g
         efforts = []
-        for j in self._joints:
+        for j in self._written:
             arm_joint = j in self.arm
             if arm_joint and not moving:
                 effort = self._position_control(j, j.stop_position, dt)
@@ -457,7 +462,7 @@ class FrankaHWSim:
                 effort = 0.0
             j.effort = effort
             efforts.append(effort)
-        self.robot.apply_efforts(self._indices, efforts)
+        self.robot.apply_efforts(self._written_indices, efforts)
 
     def _position_control(self, j: _Joint, setpoint: float, dt: float) -> float:
         if not math.isfinite(setpoint):
