@@ -128,3 +128,17 @@ def test_angle_between_orientations():
     # q and -q are the same orientation
     q = quat_about_z(0.3)
     assert grasp.angle_between(q, tuple(-c for c in q)) < 1e-6
+
+
+def test_command_topics_another_node_could_command_on():
+    # kinova-ros's move_robot.py homes JACO2 on its trajectory controllers' command topics
+    assert grasp.JACO.command_topics() == (
+        '/j2n6s300/effort_joint_trajectory_controller/command',
+        '/j2n6s300/effort_finger_trajectory_controller/command',
+    )
+    assert grasp.OMX.command_topics() == (
+        '/gripper_position/command',
+        *('/joint%d_position/command' % i for i in range(1, 5)),
+    )
+    # the franka hand has actions only: its arm's trajectory controller
+    assert grasp.PANDA.command_topics() == ('/effort_joint_trajectory_controller/command',)

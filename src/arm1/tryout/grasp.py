@@ -59,6 +59,17 @@ class Gripper:
     def lifted(self) -> Tuple[float, ...]:
         return tuple(s + d for s, d in zip(self.start, self.lift))
 
+    def command_topics(self) -> Tuple[str, ...]:
+        """The topics another node could command this arm and gripper on, beside the tries:
+        the Float64 topics, or each trajectory controller's ``command`` topic."""
+        if self.kind == 'topics':
+            return (self.gripper_topic, *self.arm_topics)
+        actions = [self.arm_action]
+        if self.kind == 'trajectory':
+            actions.append(self.gripper_action)
+        suffix = '/follow_joint_trajectory'
+        return tuple(a[: -len(suffix)] + '/command' for a in actions if a.endswith(suffix))
+
 
 # OpenMANIPULATOR-X (open_manipulator_gazebo): Float64 position commands, as its own
 # omx_gripper_sub_publisher relays gripper_position/command to the second finger.
