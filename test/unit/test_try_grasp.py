@@ -142,3 +142,15 @@ def test_command_topics_another_node_could_command_on():
     )
     # the franka hand has actions only: its arm's trajectory controller
     assert grasp.PANDA.command_topics() == ('/effort_joint_trajectory_controller/command',)
+
+
+def test_goal_outcome_names_the_state_and_error_code():
+    from control_msgs.msg import FollowJointTrajectoryResult
+
+    from arm1.tryout.grasp_ros import goal_outcome
+
+    assert goal_outcome(3, FollowJointTrajectoryResult(error_code=0)) == 'SUCCEEDED'
+    aborted = FollowJointTrajectoryResult(error_code=-5)
+    assert goal_outcome(4, aborted) == 'ABORTED GOAL_TOLERANCE_VIOLATED'
+    assert goal_outcome(4, None) == 'ABORTED'
+    assert goal_outcome(42, FollowJointTrajectoryResult(error_code=-99)) == '42 -99'
