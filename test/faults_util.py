@@ -92,6 +92,13 @@ class ClockPace:
     def factor(start: Tuple[float, float], end: Tuple[float, float]) -> float:
         return (end[1] - start[1]) / max(1e-9, end[0] - start[0])
 
+    def baseline(self, seconds: float = 3.0) -> float:
+        """The real-time factor over the next ``seconds`` of wall time: what this machine gives
+        the world now, that a flood's window is judged against (other work may share it)."""
+        start = self.now()
+        time.sleep(seconds)
+        return self.factor(start, self.now())
+
     def advances(self, seconds: float = 0.2, timeout: float = 20) -> bool:
         """True once sim time has gone ``seconds`` past the newest message now."""
         _, before = self.now()

@@ -54,7 +54,8 @@ class DisplayGui(unittest.TestCase):
                 and abs(seen[1] - previous[1]) <= 5
             )
 
-        drawn = wait_for(arm_drawn_and_settled, 45, poll=1.0)
+        # wall time: RViz draws in software GL, slow on a loaded machine (no sim time to go by)
+        drawn = wait_for(arm_drawn_and_settled, 120, poll=1.0)
         rgb = last[0]
         shot = self.display.save(rgb, 'arm1_rviz_screenshot.png')
         print('screenshot: %s' % shot)

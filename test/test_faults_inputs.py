@@ -71,7 +71,9 @@ LIMITS = {
 }
 CONTROLLERS = {'joint_state_controller'} | {'joint%d_position_controller' % i for i in range(1, 5)}
 BEST_EFFORT, STRICT = 1, 2
-MIN_PACE = 0.9  # real-time factor from /clock that floods must not push the world below
+# A flood's real-time factor from /clock may not fall below this share of the 3 s before it
+# (0.9 and 1.0 on an idle machine; judged against the baseline, as other work may share it)
+MIN_PACE_RATIO = 0.8
 # Issue 22, case 7 (docs/faults.md, "Third round"): a spawn's /clock gap may exceed the longest
 # of the 1.5 sim s before it by this much (wall s; the idle-machine bound is 100 ms: this
 # margin is for a busy 2-core machine), its real-time factor fall to this share of that window's
@@ -100,13 +102,17 @@ def spawn_from_another_process(kind, name):
     return ' answered True' in answer[-1], answer[-1]
 
 
-def model_files(since):
-    """{path: bytes} of the URDFs the worlds on this machine wrote for pybullet since then."""
+def model_files(since, robot):
+    """{path: bytes} of the URDFs a world on this machine wrote for pybullet since then for a
+    ``<robot name=robot>`` (other worlds may run beside this test's and write their own)."""
     out = {}
+    head = ('<robot name="%s"' % robot).encode()
     for path in glob.glob(os.path.join(tempfile.gettempdir(), 'arm1-sim-*', 'model-*.urdf')):
         try:
             if os.path.getmtime(path) >= since:
-                out[path] = os.path.getsize(path)
+                with open(path, 'rb') as f:
+                    if head in f.read(4096):
+                        out[path] = os.path.getsize(path)
         except OSError:  # deleted meanwhile
             pass
     return out
@@ -189,7 +195,7 @@ class FaultsInputs(unittest.TestCase):
         )
         self.assertLess(gap, base_gap + GAP_MARGIN, '%s: /clock stopped for %.3f s' % (kind, gap))
         self.assertGreater(rtf, MIN_RTF_RATIO * base_rtf, '%s: real-time factor %.3f' % (kind, rtf))
-        return ok, answer, model_files(mark)
+        return ok, answer, model_files(mark, name)
 
     # -- big descriptions (issue 22, case 7) -------------------------------------------
     def test_a_50_mb_description_spawns_whole_and_pybullet_is_handed_only_what_it_reads(self):
@@ -571,6 +577,7 @@ class FaultsInputs(unittest.TestCase):
         return self.pace.now()
 
     def test_a_burst_of_10000_commands_is_absorbed_and_the_clock_keeps_pace(self):
+        base = self.pace.baseline()
         start = self.pace.now()
         pub = self.cmd['joint3']
         for k in range(10000):
@@ -586,9 +593,10 @@ class FaultsInputs(unittest.TestCase):
         factor = self.pace.factor(start, end)
         print(
             '10000 commands sent in %.2f s, the last applied after %.2f s: real-time factor '
-            '%.3f over %.1f s from the first' % (sent, applied, factor, end[0] - start[0])
+            '%.3f over %.1f s from the first (before: %.3f)'
+            % (sent, applied, factor, end[0] - start[0], base)
         )
-        self.assertGreaterEqual(factor, MIN_PACE)
+        self.assertGreaterEqual(factor, MIN_PACE_RATIO * base)
         self.command('joint3', 0.0)
         self.assert_world_runs()
 
@@ -616,6 +624,7 @@ class FaultsInputs(unittest.TestCase):
                     with lock:
                         errors.append('%s: %s' % (name, exc))
 
+        base = self.pace.baseline()
         start = self.pace.now()
         threads = [threading.Thread(target=worker, args=(k,)) for k in range(8)]
         for t in threads:
@@ -626,12 +635,12 @@ class FaultsInputs(unittest.TestCase):
         end = self.pace_window_end(start)
         factor = self.pace.factor(start, end)
         print(
-            '504 service calls in %.1f s: real-time factor %.3f over %.1f s from the first'
-            % (took, factor, end[0] - start[0])
+            '504 service calls in %.1f s: real-time factor %.3f over %.1f s from the first '
+            '(before: %.3f)' % (took, factor, end[0] - start[0], base)
         )
         self.assertEqual(errors, [])
         self.assertEqual(len(answered), 504)
-        self.assertGreaterEqual(factor, MIN_PACE)
+        self.assertGreaterEqual(factor, MIN_PACE_RATIO * base)
         self.assert_world_runs()
 
 

@@ -35,11 +35,13 @@ from faults_util import ClockPace, World, logged  # noqa: E402
 from rostest_util import clock_recorder, rosout_recorder, wait_for  # noqa: E402
 from urdf_snippets import joint, link, sdf_tower  # noqa: E402
 
-MIN_PACE = 0.9  # real-time factor from /clock over subscriber churn
+# Real-time factors from /clock, as a share of the 3 s before (what the machine gives the
+# world now: other work may share it). Over subscriber churn (0.9-1.0 on an idle machine):
+MIN_PACE_RATIO = 0.8
 # over a 3 s window holding a costly request (~1.5 s of parsing on a loaded 2-core machine):
 # parsed on the physics thread it would fall to ~0.5; on the caller's, 0.97-1.0 was seen
 # here (0.82 once, under other helpers' load)
-MIN_PARSE_PACE = 0.75
+MIN_PARSE_PACE_RATIO = 0.75
 ERROR = 8  # rosgraph_msgs/Log level
 
 
@@ -151,12 +153,14 @@ class FaultsSensors(unittest.TestCase):
 
     def paced(self, action, least=3.0):
         """Run ``action``; return its result, its wall time and /clock's real-time factor over
-        at least ``least`` s from its start (shorter windows show only /clock's granularity)."""
+        at least ``least`` s from its start (shorter windows show only /clock's granularity)
+        as a share of the factor over the ``least`` s before it."""
+        base = self.pace.baseline(least)
         start = self.pace.now()
         out = action()
         took = time.monotonic() - start[0]
         time.sleep(max(0.0, start[0] + least - time.monotonic()))
-        return out, took, self.pace.factor(start, self.pace.now())
+        return out, took, self.pace.factor(start, self.pace.now()) / max(base, 1e-9)
 
     # -- spawn_sdf_model ----------------------------------------------------------
     def test_sdf_non_finite_numbers_are_refused_naming_the_element(self):
@@ -240,9 +244,9 @@ class FaultsSensors(unittest.TestCase):
         msg, took, factor = self.paced(
             lambda: self.refused(self.sdf_srv, 'huge', xml, 'links per model', '100000')
         )
-        print('100000 links: refused in %.2f s, real-time factor %.3f' % (took, factor))
+        print('100000 links: refused in %.2f s, %.2f of the pace before' % (took, factor))
         self.assertLess(took, 30.0)
-        self.assertGreaterEqual(factor, MIN_PARSE_PACE)
+        self.assertGreaterEqual(factor, MIN_PARSE_PACE_RATIO)
         frames = '<frame name="f0"><pose relative_to="__model__">0 0 0 0 0 0</pose></frame>'
         frames += ''.join(
             '<frame name="f%d"><pose relative_to="f%d">0 0 1e-5 0 0 0</pose></frame>' % (i, i - 1)
@@ -253,10 +257,10 @@ class FaultsSensors(unittest.TestCase):
             '0 0 0 0 0 0</pose></link>%s</model></sdf>' % frames
         )
         _, took, factor = self.paced(lambda: self.spawned(self.sdf_srv, 'deep', xml))
-        print('99000-frame chain: spawned in %.2f s, real-time factor %.3f' % (took, factor))
+        print('99000-frame chain: spawned in %.2f s, %.2f of the pace before' % (took, factor))
         self.gone('deep')
         self.assertLess(took, 60.0)
-        self.assertGreaterEqual(factor, MIN_PARSE_PACE)
+        self.assertGreaterEqual(factor, MIN_PARSE_PACE_RATIO)
         self.assert_world_runs()
 
     def test_a_client_killed_during_a_costly_sdf_spawn_leaves_the_world_serving(self):
@@ -364,6 +368,7 @@ class FaultsSensors(unittest.TestCase):
     def test_subscribers_that_connect_and_vanish_rapidly_leave_the_sensor_publishing(self):
         self.spawned(self.urdf_srv, 'flicker', robot('r', link('base'), laser(rate='50'), IMU))
         try:
+            base = self.pace.baseline()
             stop = time.monotonic() + 8.0
 
             def churn(topic, kind):
@@ -382,8 +387,8 @@ class FaultsSensors(unittest.TestCase):
             for t in threads:
                 t.join(30)
             factor = self.pace.factor(start, self.pace.now())
-            print('subscriber churn for 8 s: real-time factor %.3f' % factor)
-            self.assertGreaterEqual(factor, MIN_PACE)
+            print('subscriber churn for 8 s: real-time factor %.3f (before: %.3f)' % (factor, base))
+            self.assertGreaterEqual(factor, MIN_PACE_RATIO * base)
             msg = rospy.wait_for_message('/faults/scan', LaserScan, 30)
             self.assertEqual(len(msg.ranges), 60)
         finally:
@@ -423,16 +428,16 @@ class FaultsSensors(unittest.TestCase):
         _, took, factor = self.paced(
             lambda: self.refused(self.urdf_srv, 'chain5000', chain(5000), 'links per model')
         )
-        print('5000-link fixed chain: refused in %.2f s, real-time factor %.3f' % (took, factor))
+        print('5000-link fixed chain: refused in %.2f s, %.2f of the pace before' % (took, factor))
         self.assertLess(took, 30.0)
-        self.assertGreaterEqual(factor, MIN_PARSE_PACE)
+        self.assertGreaterEqual(factor, MIN_PARSE_PACE_RATIO)
         # lumped into one link, its URDF had a line pybullet could not read (74f158d)
         _, took, factor = self.paced(
             lambda: self.spawned(self.urdf_srv, 'chain900', chain(900), pose(x=5.0))
         )
-        print('900-link fixed chain: spawned in %.2f s, real-time factor %.3f' % (took, factor))
+        print('900-link fixed chain: spawned in %.2f s, %.2f of the pace before' % (took, factor))
         self.gone('chain900')
-        self.assertGreaterEqual(factor, MIN_PARSE_PACE)
+        self.assertGreaterEqual(factor, MIN_PARSE_PACE_RATIO)
         self.assert_world_runs()
 
     def test_zz_the_world_log_has_no_traceback_through_arm1(self):

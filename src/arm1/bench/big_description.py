@@ -48,12 +48,13 @@ def big_description(kind: str, name: str = 'big') -> str:
 
 
 def spawn_big_description(kind: str, name: str) -> str:
-    """Spawns ``big_description(kind)`` 2 m from the origin; the world's answer as a line."""
+    """Spawns ``big_description(kind, name)`` 2 m from the origin; the world's answer as a
+    line."""
     import rospy
     from gazebo_msgs.srv import SpawnModel
     from geometry_msgs.msg import Point, Pose, Quaternion
 
-    xml = big_description(kind)
+    xml = big_description(kind, name)
     rospy.wait_for_service('/gazebo/spawn_urdf_model', 60)
     clear = Pose(Point(2.0, 0.0, 0.0), Quaternion(0.0, 0.0, 0.0, 1.0))
     answer = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)(name, xml, '', clear, '')
