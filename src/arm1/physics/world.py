@@ -42,6 +42,12 @@ class World:
             on_connect(cid)
         p.setTimeStep(config.max_step_size, physicsClientId=cid)
         p.setGravity(*config.gravity, physicsClientId=cid)
+        # Joint stops as ODE's (stop ERP 0.2): Bullet corrects a joint limit's overshoot with
+        # its ERP (0.2) only while the overshoot is shallower than the split-impulse threshold
+        # (0.04 rad or m); a deeper one goes to the split impulse, which Bullet's multibodies
+        # never apply, so the joint stayed past its stop. Only joint limits read this setting
+        # in a world of multibodies (their contacts ignore it).
+        p.setPhysicsEngineParameter(useSplitImpulse=0, physicsClientId=cid)
         if self.gui:
             p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=cid)
             p.resetDebugVisualizerCamera(0.35, 45, -30, (0, 0, 0.05), physicsClientId=cid)
