@@ -90,8 +90,10 @@ def link_twists(client: int, body: int, links: Sequence[int]) -> List[Twist]:
     return [(s[0], s[6], s[7]) for s in states]
 
 
-def velocity_change(before: Sequence[Twist], after: Sequence[Twist], point: Vec3) -> Twist:
-    """The mean change of the links' velocity field at ``point``: (point, linear, angular)."""
+def velocity_change(
+    before: Sequence[Twist], after: Sequence[Twist], point: Vec3
+) -> Tuple[Vec3, Vec3]:
+    """The mean change of the links' velocity field at ``point``: (linear, angular)."""
     n = len(after)
     dv = [0.0, 0.0, 0.0]
     dw = [0.0, 0.0, 0.0]
@@ -102,7 +104,7 @@ def velocity_change(before: Sequence[Twist], after: Sequence[Twist], point: Vec3
         for k in range(3):
             dv[k] += (v1[k] - v0[k] + at[k]) / n
             dw[k] += w[k] / n
-    return point, (dv[0], dv[1], dv[2]), (dw[0], dw[1], dw[2])
+    return (dv[0], dv[1], dv[2]), (dw[0], dw[1], dw[2])
 
 
 class JumpCarrier:
@@ -126,7 +128,7 @@ class JumpCarrier:
         now = dict(zip(self.links, link_twists(cid, self.body, self.links)))
         for obj, links in self.held.items():
             point = p.getBasePositionAndOrientation(obj, physicsClientId=cid)[0]
-            _, dv, dw = velocity_change(
+            dv, dw = velocity_change(
                 [self._before[link] for link in links], [now[link] for link in links], point
             )
             v, w = p.getBaseVelocity(obj, physicsClientId=cid)

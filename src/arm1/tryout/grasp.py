@@ -8,7 +8,7 @@ judges rise ratio and slip the same way).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Dict, Optional, Sequence, Tuple
 
 from arm1.goal.pick_place import MAX_SLIP, MIN_RISE_RATIO, HoldVerdict, judge_hold
@@ -158,21 +158,15 @@ PANDA = Gripper(
 # gripper_controller (effort JointTrajectoryController of `gripper`; the roboticsgroup mimic
 # plugin moves gripper_sub). The arm and fingers are OpenMANIPULATOR-X's (as omx: pads 24-65 mm
 # ahead of the finger links, joint2 -0.4 and joint4 +0.4 rad raise the palm level).
-TB3_OMX = Gripper(
+TB3_OMX = replace(
+    OMX,
     name='tb3_omx',
     model='robot',
     kind='trajectory',
-    palm_link='link5',
-    finger_links=('gripper_link', 'gripper_link_sub'),
-    offset=(0.045, 0.0, 0.0),
-    open_position=(0.019,),
-    closed_position=(-0.01,),
-    arm_joints=('joint1', 'joint2', 'joint3', 'joint4'),
-    start=(0.0, 0.0, 0.0, 0.0),
-    lift=(0.0, -0.4, 0.0, 0.4),
-    box_size=0.03,
     finger_joints=('gripper',),
     follower_joints=('gripper_sub',),
+    gripper_topic='',
+    arm_topics=(),
     gripper_action='/gripper_controller/follow_joint_trajectory',
     arm_action='/arm_controller/follow_joint_trajectory',
 )
