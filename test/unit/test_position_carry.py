@@ -68,11 +68,12 @@ def run(sim, seconds):
         sim.step()
 
 
-def test_a_box_held_by_position_driven_fingers_rises_with_a_position_driven_lift(sim):
-    ros = FakeRos({'carrier': CONTROLLERS})
+def _closed_on_the_box(sim, ros, urdf=GRIPPER):
+    """The carrier (``urdf``) and the box between its fingers, its controllers running and its
+    fingers commanded past the box's faces: (model, box)."""
     model = sim.spawn_urdf(
         'carrier',
-        GRIPPER,
+        urdf,
         controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
     )
     box = sim.spawn_urdf('box', BOX, position=(0.5, 0, 0.0205))
@@ -82,9 +83,15 @@ def test_a_box_held_by_position_driven_fingers_rises_with_a_position_driven_lift
     ok, _ = switch_while_updating(model.controller_manager, names, [], sim.step, 2, poll=0.0005)
     assert ok
     run(sim, 0.3)
-    ros.publish('/carrier/left_controller/command', 0.03)  # closing past the box's faces
-    ros.publish('/carrier/right_controller/command', 0.03)
+    for side in ('left', 'right'):
+        ros.publish('/carrier/%s_controller/command' % side, 0.03)
     run(sim, 0.5)
+    return model, box
+
+
+def test_a_box_held_by_position_driven_fingers_rises_with_a_position_driven_lift(sim):
+    ros = FakeRos({'carrier': CONTROLLERS})
+    model, box = _closed_on_the_box(sim, ros)
     left = model.robot.read(model.robot.indices(['left']))[0][0]
     assert left == pytest.approx(0.02, abs=2e-3)  # stopped by the box, not put through it
     start = box.robot.link_pose('box')[0][2]
@@ -130,23 +137,7 @@ def test_a_position_joint_pushes_with_at_most_its_effort_limit():
 def _weak_grip(sim, ros):
     """The carrier with fingers that squeeze at 0.5 N each (friction 1 N against the box's
     0.49 N weight), closed on the box; returns the model and the box."""
-    weak = GRIPPER.replace('effort="10"', 'effort="0.5"')
-    model = sim.spawn_urdf(
-        'carrier',
-        weak,
-        controller_manager_factory=lambda hw, ns: ControllerManager(hw, ros.node_handle, ns),
-    )
-    box = sim.spawn_urdf('box', BOX, position=(0.5, 0, 0.0205))
-    names = sorted(CONTROLLERS)
-    for n in names:
-        model.controller_manager.load_controller(n)
-    ok, _ = switch_while_updating(model.controller_manager, names, [], sim.step, 2, poll=0.0005)
-    assert ok
-    run(sim, 0.3)
-    for side in ('left', 'right'):
-        ros.publish('/carrier/%s_controller/command' % side, 0.03)
-    run(sim, 0.5)
-    return model, box
+    return _closed_on_the_box(sim, ros, GRIPPER.replace('effort="10"', 'effort="0.5"'))
 
 
 def _lift_in_jumps(sim, ros, top, jumps=60, every=0.02):
