@@ -60,7 +60,7 @@ APT_PACKAGES := \
   $(ROBOT_BUILD_DEPENDS)
 
 # A change to any of these rebuilds the workspace (python modules under
-# src/arm1 need no rebuild: the devel space imports them from src/).
+# src/_arm1sim need no rebuild: the devel space imports them from src/).
 BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/cfg/*.cfg $(ROOT)/env-hooks/*) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
@@ -166,7 +166,7 @@ build: $(STAMPS)/venv link-package
 	@touch $(STAMPS)/build
 
 demo: setup
-	$(WS_SHELL) python3 -m arm1.session.demo
+	$(WS_SHELL) python3 -m _arm1sim.session.demo
 
 test: setup
 	$(WS_SHELL) python test/run_all.py
@@ -194,12 +194,12 @@ lint: setup
 	cd $(ROOT) && $(VENV_PY) -m ruff check . && $(VENV_PY) -m ruff format --check . && $(VENV_PY) -m mypy
 
 bench: setup
-	$(WS_SHELL) python -m arm1.bench
+	$(WS_SHELL) python -m _arm1sim.bench
 
 # Not part of make test: robot_spawn.launch + simple_mover + a camera viewer for SOAK_MINUTES.
 SOAK_MINUTES ?= 10
 soak: setup
-	$(WS_SHELL) python -m arm1.bench.soak --minutes $(SOAK_MINUTES)
+	$(WS_SHELL) python -m _arm1sim.bench.soak --minutes $(SOAK_MINUTES)
 
 clean:
 	rm -rf $(WS)

@@ -13,7 +13,7 @@ from rostest_util import JOINTS, positions, wait_for
 from sensor_msgs.msg import Image
 from std_msgs.msg import Float64
 
-from arm1.goal.image import is_uniform
+from _arm1sim.goal.image import is_uniform
 
 UP = (0.0, 1.57, 0.0, 0.0)  # arm upright: the camera at its tip sees only the sky
 LOOK = (0.0, 0.6, -0.4, -0.4)  # look_away's default pose: the horizon

@@ -10,7 +10,7 @@ import tempfile
 import numpy as np
 import rospkg
 
-from arm1.goal.image import png
+from _arm1sim.goal.image import png
 
 SCREEN = (1024, 768)
 

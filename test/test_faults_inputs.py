@@ -58,8 +58,8 @@ from rostest_util import (  # noqa: E402
     wait_for_controllers,
 )
 
-from arm1.bench.big_description import spawn_big_description  # noqa: E402
-from arm1.ros.common.publishers import synchronous_publisher  # noqa: E402
+from _arm1sim.bench.big_description import spawn_big_description  # noqa: E402
+from _arm1sim.ros.common.publishers import synchronous_publisher  # noqa: E402
 
 CM = '/arm1/controller_manager/'
 CTRL = '/arm1/%s_position_controller'
@@ -83,7 +83,7 @@ BIG_CLIENT = '--big-description-client'
 
 
 def big_client_main(kind, name):
-    """Spawns ``big_description(kind)`` (arm1.bench.big_description) from a process of its own,
+    """Spawns ``big_description(kind)`` (_arm1sim.bench.big_description) from a process of its own,
     so that building and sending 50 MB does not delay the test's /clock recorder."""
     rospy.init_node('big_description_client', anonymous=True)
     print(spawn_big_description(kind, name))
@@ -179,7 +179,7 @@ class FaultsInputs(unittest.TestCase):
         return msg
 
     def paced_spawn(self, kind, name):
-        """Spawn arm1.bench.big_description(kind) from another process: (success, answer, files the
+        """Spawn bench.big_description(kind) from another process: (success, answer, files the
         world wrote for it); asserts /clock kept the pace of the 1.5 sim s before."""
         self.window.start()
         sim_wait(1.5)

@@ -34,7 +34,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from faults_util import ClockWindow  # noqa: E402
 from rostest_util import JOINTS, Recorder, WorldTestCase, positions, sim_wait, wait_for  # noqa: E402
 
-from arm1.ros.common.publishers import synchronous_publisher  # noqa: E402
+from _arm1sim.ros.common.publishers import synchronous_publisher  # noqa: E402
 
 ACTION = '/arm1/arm_controller/follow_joint_trajectory'
 GAP_MARGIN = 0.5  # wall s a /clock gap (100 Hz of sim time) may exceed the baseline's longest

@@ -15,7 +15,7 @@ import rosgraph
 import rospy
 import rostest
 
-from arm1.session.launcher import listening_addresses, node_pid
+from _arm1sim.session.launcher import listening_addresses, node_pid
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import wait_for  # noqa: E402

@@ -1,6 +1,6 @@
 #!/usr/bin/env python
 """Pick by friction alone: a row of pick_arms (test/robots/pick_arm, arm:=false), one per object
-of arm1.goal.pick_place.OBJECTS, each closes its two-finger mimic gripper on its object on the
+of _arm1sim.goal.pick_place.OBJECTS, each closes its two-finger mimic gripper on its object on the
 table, lifts it 0.1 m and holds it 5 s (sim time); the object must rise with >= 95 % of the
 gripper's rise and slip <= 2 mm, in every one of ``tries`` tries, and fall once the gripper
 opens. Between tries each object is put back on the table by /gazebo/set_model_state, a little
@@ -27,8 +27,8 @@ from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import Recorder, SpawningTestCase, sim_wait, spawn_urdf, wait_for  # noqa: E402
 
-from arm1.goal.pick_place import HOLD_S, LIFT_RISE, OBJECTS, judge_hold, pick_lift  # noqa: E402
-from arm1.ros.common.packages import find_package  # noqa: E402
+from _arm1sim.goal.pick_place import HOLD_S, LIFT_RISE, OBJECTS, judge_hold, pick_lift  # noqa: E402
+from _arm1sim.ros.common.packages import find_package  # noqa: E402
 
 SPACING = 0.4  # m between the arms along y (the table in pick_rows.world is long enough)
 REACH_X = 0.3  # where an arm:=false pick_arm's fingers are

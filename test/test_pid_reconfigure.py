@@ -24,9 +24,9 @@ from std_msgs.msg import Float64
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import Recorder, WorldTestCase, joint_recorder, positions, sim_wait, wait_for  # noqa: E402
 
-from arm1.control.hardware_interface import JointHandle, JointLimits  # noqa: E402
-from arm1.control.joint_position_controller import JointPositionController  # noqa: E402
-from arm1.ros.control.node_handle import RosNodeHandle  # noqa: E402
+from _arm1sim.control.hardware_interface import JointHandle, JointLimits  # noqa: E402
+from _arm1sim.control.joint_position_controller import JointPositionController  # noqa: E402
+from _arm1sim.ros.control.node_handle import RosNodeHandle  # noqa: E402
 
 NS = '/arm1/joint1_position_controller'
 

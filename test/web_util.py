@@ -9,7 +9,7 @@ import time
 import numpy as np
 from PIL import Image
 
-from arm1.session.browser import Browser
+from _arm1sim.session.browser import Browser
 
 # where the page's camera is (ros/world/web_view.py: INITIAL_*)
 CAMERA = np.array((0.3, -0.3, 0.25))

@@ -47,20 +47,23 @@ PACKAGES = {
     'gazebo_ros': (
         'Stand-in for gazebo_ros: empty_world.launch, spawn_model and gzserver on '
         "arm1's pybullet world.",
-        {'spawn_model': 'arm1.ros.tools.spawn_model', 'gzserver': 'arm1.ros.world.world_node'},
+        {
+            'spawn_model': '_arm1sim.ros.tools.spawn_model',
+            'gzserver': '_arm1sim.ros.world.world_node',
+        },
     ),
     'controller_manager': (
         "Stand-in for controller_manager's spawner and controller_manager tool, backed by "
         "arm1's controller managers.",
         {
-            'spawner': 'arm1.ros.tools.spawner',
-            'controller_manager': 'arm1.ros.tools.controller_manager_cli',
+            'spawner': '_arm1sim.ros.tools.spawner',
+            'controller_manager': '_arm1sim.ros.tools.controller_manager_cli',
         },
     ),
     'xacro': (
         'Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '
         'package path.',
-        {'xacro': 'arm1.ros.tools.xacro_bridge'},
+        {'xacro': '_arm1sim.ros.tools.xacro_bridge'},
     ),
 }
 

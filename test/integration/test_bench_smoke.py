@@ -12,7 +12,7 @@ import pytest
 def quick_bench(tmp_path_factory):
     out = tmp_path_factory.mktemp('bench')
     proc = subprocess.run(
-        [sys.executable, '-m', 'arm1.bench', '--quick', '--out', str(out)],
+        [sys.executable, '-m', '_arm1sim.bench', '--quick', '--out', str(out)],
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,

@@ -11,7 +11,7 @@ import subprocess
 
 import pytest
 
-from arm1.tryout import workspace
+from _arm1sim.tryout import workspace
 
 NAMED = (
     'roscpp std_msgs gazebo_dev gazebo_ros gazebo_plugins gazebo_ros_control controller_manager '

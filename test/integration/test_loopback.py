@@ -11,7 +11,7 @@ import psutil
 import pytest
 import rosgraph
 
-from arm1.session.launcher import RosSession, listening_addresses, loopback_env, node_pid
+from _arm1sim.session.launcher import RosSession, listening_addresses, loopback_env, node_pid
 
 LOOPBACK = '127.0.0.1'
 

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from arm1.tryout import workspace
+from _arm1sim.tryout import workspace
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MINI_ARM = os.path.join(os.path.dirname(HERE), 'robots', 'mini_arm')
@@ -33,7 +33,7 @@ def run(tmp_path_factory):
         [
             sys.executable,
             '-m',
-            'arm1.tryout',
+            '_arm1sim.tryout',
             MINI_ARM,
             'mini_arm',
             'mini_arm_gazebo.launch',

@@ -12,7 +12,7 @@ from urllib.parse import urlparse
 
 import pytest
 
-from arm1.session.launcher import RosSession
+from _arm1sim.session.launcher import RosSession
 
 # all 17 of gazebo_ros/launch/empty_world.launch's arguments, none at its default
 ALL_ARGS = {

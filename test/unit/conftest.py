@@ -19,11 +19,11 @@ SRC = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), 
 if SRC not in sys.path:
     sys.path.insert(0, SRC)
 
-from arm1.control.controller_manager import ControllerManager  # noqa: E402  (after SRC)
-from arm1.control.interfaces import Fields, NodeFactory, Params  # noqa: E402
-from arm1.control.switching import switch_while_updating  # noqa: E402
-from arm1.paths import repo_root  # noqa: E402
-from arm1.tuning.local_ros import LocalNodeHandle, LocalRos  # noqa: E402
+from _arm1sim.control.controller_manager import ControllerManager  # noqa: E402  (after SRC)
+from _arm1sim.control.interfaces import Fields, NodeFactory, Params  # noqa: E402
+from _arm1sim.control.switching import switch_while_updating  # noqa: E402
+from _arm1sim.paths import repo_root  # noqa: E402
+from _arm1sim.tuning.local_ros import LocalNodeHandle, LocalRos  # noqa: E402
 
 REPO_ROOT = repo_root()
 

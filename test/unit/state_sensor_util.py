@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from typing import Any, Dict, List, Tuple
 
-from arm1.description.sdf_world import Shape, StaticModel, WorldConfig
-from arm1.sim.simulation import Model, Simulation
+from _arm1sim.description.sdf_world import Shape, StaticModel, WorldConfig
+from _arm1sim.sim.simulation import Model, Simulation
 
 G = 9.8
 

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from arm1.control.angles import (
+from _arm1sim.control.angles import (
     normalize_angle,
     shortest_angular_distance,
     shortest_angular_distance_with_large_limits,

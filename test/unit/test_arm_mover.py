@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from arm1.goal.arm_mover import clamp_request, describe, joint_limits, off_target
+from _arm1sim.goal.arm_mover import clamp_request, describe, joint_limits, off_target
 
 ARM1_RANGES = {
     'joint1': (-1.57, 1.57),

@@ -15,17 +15,17 @@ import pytest
 from conftest import WORLD_FILE, box_link
 from PIL import Image
 
-from arm1.description.camera_sensor import CameraSensor, camera_sensors
-from arm1.description.limits import LimitError, Limits
-from arm1.description.sdf_world import WorldConfig, read_world
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.goal.image import is_uniform, png
-from arm1.physics import sensor_manager
-from arm1.physics.camera_geometry import intrinsics, view_matrix
-from arm1.physics.render_process import RenderError, encode, render
-from arm1.physics.sensor_manager import Camera, SensorManager
-from arm1.sim.pacer import Pacer
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.description.camera_sensor import CameraSensor, camera_sensors
+from _arm1sim.description.limits import LimitError, Limits
+from _arm1sim.description.sdf_world import WorldConfig, read_world
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.goal.image import is_uniform, png
+from _arm1sim.physics import sensor_manager
+from _arm1sim.physics.camera_geometry import intrinsics, view_matrix
+from _arm1sim.physics.render_process import RenderError, encode, render
+from _arm1sim.physics.sensor_manager import Camera, SensorManager
+from _arm1sim.sim.pacer import Pacer
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 STEP_NS = 1000000  # 1 ms physics step
 
@@ -721,7 +721,7 @@ def test_snapshot_png_of_a_frame():
 def test_camera_frame_id_as_gazebo_ros_camera_utils(
     monkeypatch, namespace, camera_name, params, frame, expected
 ):
-    from arm1.ros.plugins import camera_plugin, frames
+    from _arm1sim.ros.plugins import camera_plugin, frames
 
     monkeypatch.setattr(frames.rospy, 'has_param', lambda key: key in params)
     monkeypatch.setattr(frames.rospy, 'get_param', lambda key: params[key])

@@ -10,13 +10,13 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from arm1.description import safe_xml
-from arm1.description.compact_urdf import compact_urdf
-from arm1.description.gazebo_tags import PYBULLET_LINE
-from arm1.description.limits import Limits
-from arm1.description.sdf_world import WorldConfig
-from arm1.description.urdf_model import UrdfError, UrdfLimitError, parse_description, parse_urdf
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.description import safe_xml
+from _arm1sim.description.compact_urdf import compact_urdf
+from _arm1sim.description.gazebo_tags import PYBULLET_LINE
+from _arm1sim.description.limits import Limits
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.description.urdf_model import UrdfError, UrdfLimitError, parse_description, parse_urdf
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 INERTIAL = (
     '<inertial><origin xyz="0 0 0.1"/><mass value="0.5"/>'

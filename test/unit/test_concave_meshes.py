@@ -10,17 +10,17 @@ import pybullet as p
 import pytest
 import state_sensor_util
 
-from arm1.description.limits import Limits
-from arm1.description.sdf_world import WorldConfig
-from arm1.physics import concave_meshes
-from arm1.physics.concave_meshes import (
+from _arm1sim.description.limits import Limits
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.physics import concave_meshes
+from _arm1sim.physics.concave_meshes import (
     collision_mesh,
     concave_collisions,
     concavity,
     mesh_triangles,
 )
-from arm1.physics.stl import write_binary_stl
-from arm1.sim.simulation import Simulation
+from _arm1sim.physics.stl import write_binary_stl
+from _arm1sim.sim.simulation import Simulation
 
 # A U of 40 mm x 30 mm, 20 mm deep: prongs 10 mm thick, a slot 20 mm wide down to z = 10 mm.
 W, H, T, D = 0.04, 0.03, 0.01, 0.02

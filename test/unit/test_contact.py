@@ -5,7 +5,7 @@ import logging
 import pytest
 from state_sensor_util import G, box, listen, robot, steps, world
 
-from arm1.physics.contact import ContactSensor
+from _arm1sim.physics.contact import ContactSensor
 
 
 def bumper(collision='<contact><collision>base_collision</collision></contact>', params=''):
@@ -65,7 +65,7 @@ def test_in_the_air_it_reports_no_states(sim):
 
 
 def test_without_a_collision_named_it_reports_nothing_and_says_so(sim, caplog):
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         model = sim.spawn_urdf(
             'crate',
             robot(

@@ -7,13 +7,13 @@ import random
 
 from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos
 
-from arm1.control.controller import Controller
-from arm1.control.controller_manager import _grouped
-from arm1.control.hardware_interface import saturate_effort
-from arm1.control.joint_position_controller import JointPositionController
-from arm1.control.joint_velocity_controller import JointVelocityController
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.control.controller import Controller
+from _arm1sim.control.controller_manager import _grouped
+from _arm1sim.control.hardware_interface import saturate_effort
+from _arm1sim.control.joint_position_controller import JointPositionController
+from _arm1sim.control.joint_velocity_controller import JointVelocityController
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
 
 NS = '/mixed_ns'
 JOINTS = ['wheel_joint', 'slider_joint', 'flap_joint']  # continuous, prismatic, revolute

@@ -9,7 +9,7 @@ from conftest import pump_switch
 from test_controller_manager import rig, states  # noqa: F401 (rig is a fixture)
 from test_joint_position_controller import Rig
 
-from arm1.control.controller_manager import BEST_EFFORT, STRICT, ControllerManagerError
+from _arm1sim.control.controller_manager import BEST_EFFORT, STRICT, ControllerManagerError
 
 
 @pytest.mark.parametrize(
@@ -39,7 +39,7 @@ def test_best_effort_says_once_which_names_it_skips(rig, caplog):  # noqa: F811
     cm, _, _, _ = rig
     cm.load_controller('flap_controller')
     names = ['ghost%d' % i for i in range(1000)]
-    with caplog.at_level(logging.WARNING, logger='arm1.control'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.control'):
         ok, _ = pump_switch(cm, ['flap_controller'] + names, names, strictness=BEST_EFFORT)
     assert ok is True
     assert states(cm)['flap_controller'] == 'running'
@@ -52,7 +52,7 @@ def test_best_effort_says_once_which_names_it_skips(rig, caplog):  # noqa: F811
 
 def test_strict_names_the_first_unknown_only(rig, caplog):  # noqa: F811
     cm, _, _, _ = rig
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         assert cm.switch_controller(['ghost%d' % i for i in range(1000)], [], STRICT) is False
     assert [r.getMessage() for r in caplog.records] == [
         "Could not start controller 'ghost0': it is not loaded"
@@ -63,7 +63,7 @@ def test_strict_names_the_first_unknown_only(rig, caplog):  # noqa: F811
 def test_invalid_strictness_is_best_effort_with_a_warning(rig, caplog, strictness):  # noqa: F811
     cm, _, _, _ = rig
     cm.load_controller('flap_controller')
-    with caplog.at_level(logging.WARNING, logger='arm1.control'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.control'):
         ok, _ = pump_switch(cm, ['flap_controller', 'ghost'], strictness=strictness)
     assert ok is True
     assert any('strictness %d' % strictness in r.getMessage() for r in caplog.records)
@@ -82,7 +82,7 @@ def test_a_command_outside_the_limits_is_clamped_and_said_once_per_start(caplog)
     jrig = Rig('slider_joint', {'p': 1.0})
     caplog.clear()  # the jrig's own passive-joint message
     jrig.start()
-    with caplog.at_level(logging.WARNING, logger='arm1.control'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.control'):
         jrig.command(1e300)
         jrig.command(-5.0)
         jrig.command(0.1)
@@ -96,7 +96,7 @@ def test_a_command_outside_the_limits_is_clamped_and_said_once_per_start(caplog)
     ), said
     jrig.stop()
     jrig.start()
-    with caplog.at_level(logging.WARNING, logger='arm1.control'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.control'):
         jrig.command(7.0)
     assert len(caplog.records) == 2
 
@@ -104,7 +104,7 @@ def test_a_command_outside_the_limits_is_clamped_and_said_once_per_start(caplog)
 def test_negative_gains_apply_with_a_warning_naming_the_controller(caplog):
     jrig = Rig('flap_joint', {'p': 1.0})
     caplog.clear()
-    with caplog.at_level(logging.WARNING, logger='arm1.control'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.control'):
         applied = jrig.c.set_gains({'p': -2.0, 'd': -0.5})
     assert (applied['p'], applied['d']) == (-2.0, -0.5)
     said = [r.getMessage() for r in caplog.records]

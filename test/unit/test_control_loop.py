@@ -7,13 +7,13 @@ import math
 import pytest
 from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos, mixed_params
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.loop import ControlLoop, control_period_ns
-from arm1.control.switching import switch_while_updating
-from arm1.description.sdf_world import WorldConfig
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.loop import ControlLoop, control_period_ns
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.sim.simulation import Simulation
 
 NS = '/mixed_ns'
 STEP_NS = 1000000  # a 1 ms physics step
@@ -88,14 +88,14 @@ def test_time_going_back_updates_at_once():
 
 @pytest.mark.parametrize('period', [math.nan, math.inf, 0.0, -0.01])
 def test_a_control_period_that_is_no_positive_number_means_every_step(period, caplog):
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         assert control_period_ns(period, STEP_NS, 'robot') == STEP_NS
     assert [r.getMessage().split(':')[0] for r in caplog.records] == ['robot']
     assert 'controlPeriod' in caplog.records[0].getMessage()
 
 
 def test_a_control_period_shorter_than_the_step_is_said_and_updates_every_step(caplog):
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         period = control_period_ns(0.0005, STEP_NS, 'robot')
     assert 'shorter than the physics step' in caplog.records[0].getMessage()
     loop, cm, _, _ = loop_rig(0.0005)

@@ -6,18 +6,18 @@ import time
 import pytest
 from conftest import JPC, JSC, MIXED_URDF, FakeRobot, FakeRos, pump_switch
 
-from arm1.control.controller import Controller
-from arm1.control.controller_manager import (
+from _arm1sim.control.controller import Controller
+from _arm1sim.control.controller_manager import (
     BEST_EFFORT,
     STRICT,
     ControllerManager,
     ControllerManagerError,
 )
-from arm1.control.joint_position_controller import JointPositionController
-from arm1.control.registry import CONTROLLER_TYPES, by_type_name
-from arm1.control.switching import SwitchRequest, SwitchTimeout, switch_while_updating
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.control.joint_position_controller import JointPositionController
+from _arm1sim.control.registry import CONTROLLER_TYPES, by_type_name
+from _arm1sim.control.switching import SwitchRequest, SwitchTimeout, switch_while_updating
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
 
 NS = '/mixed_ns'
 PERIOD_NS = 1000000  # a 1 ms physics step

@@ -3,7 +3,7 @@
 
 from types import SimpleNamespace
 
-from arm1.ros.tools.controller_manager_cli import Manager, run
+from _arm1sim.ros.tools.controller_manager_cli import Manager, run
 
 
 def fake(ok=True):

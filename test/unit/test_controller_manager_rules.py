@@ -8,7 +8,7 @@ import pytest
 from conftest import pump_switch
 from test_controller_manager import PERIOD_NS, rig, states  # noqa: F401 (rig is a fixture)
 
-from arm1.control.controller_manager import BEST_EFFORT, STRICT
+from _arm1sim.control.controller_manager import BEST_EFFORT, STRICT
 
 
 def count_calls(controller, hook):
@@ -88,7 +88,7 @@ def test_a_running_controller_in_both_lists_is_refused(rig, strictness, caplog):
     assert pump_switch(cm, ['flap_controller'])[0]
     flap = cm.controller('flap_controller')
     starting, stopping = count_calls(flap, 'starting'), count_calls(flap, 'stopping')
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         ok = cm.switch_controller(['flap_controller'], ['flap_controller'], strictness)
     assert ok is False
     assert 'conflicting switching command' in caplog.text and 'flap_controller' in caplog.text
@@ -138,7 +138,7 @@ def test_a_timeout_gives_up_without_an_update_and_a_zero_timeout_waits(rig):  # 
 # ------------------------------------------------------------------ reload_controller_libraries
 def test_reload_without_force_kill_refuses_while_controllers_are_loaded(rig, caplog):  # noqa: F811
     cm = loaded(rig[0], 'flap_controller')  # loaded, not even running
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         assert cm.reload_controller_libraries(False) is False
     assert 'flap_controller' in caplog.text
     assert states(cm) == {'flap_controller': 'initialized'}

@@ -11,18 +11,18 @@ import pybullet as p
 import pytest
 from conftest import REPO_ROOT, box_link
 
-from arm1.description.camera_sensor import (
+from _arm1sim.description.camera_sensor import (
     DEPTH_CAMERA_PLUGIN,
     OPENNI_KINECT_PLUGIN,
     CameraSensor,
     camera_sensors,
 )
-from arm1.description.gazebo_plugins import unimplemented
-from arm1.description.sdf_world import WorldConfig
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.physics import renderers
-from arm1.physics.camera_geometry import depth_metres
-from arm1.physics.depth_camera import (
+from _arm1sim.description.gazebo_plugins import unimplemented
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.physics import renderers
+from _arm1sim.physics.camera_geometry import depth_metres
+from _arm1sim.physics.depth_camera import (
     POINT_STEP,
     PointCloudBuilder,
     depth_image,
@@ -30,8 +30,8 @@ from arm1.physics.depth_camera import (
     point_cloud,
     split_frame,
 )
-from arm1.physics.render_process import render
-from arm1.sim.simulation import Simulation
+from _arm1sim.physics.render_process import render
+from _arm1sim.sim.simulation import Simulation
 
 DEPTH_BOT = os.path.join(REPO_ROOT, 'test', 'config', 'depth_bot.urdf')
 
@@ -292,8 +292,8 @@ def test_the_chunked_point_cloud_serializes_as_sensor_msgs_does(monkeypatch):
 
     from sensor_msgs.msg import PointCloud2
 
-    from arm1.ros.plugins import camera_plugin
-    from arm1.ros.plugins.depth_camera_plugin import ChunkedPointCloud2, point_fields
+    from _arm1sim.ros.plugins import camera_plugin
+    from _arm1sim.ros.plugins.depth_camera_plugin import ChunkedPointCloud2, point_fields
 
     monkeypatch.setattr(camera_plugin, 'CHUNK', 40)  # several slices of a 6-point cloud
     s = sensor_3x2()

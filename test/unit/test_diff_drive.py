@@ -8,10 +8,10 @@ import math
 import pytest
 from two_wheels import SEPARATION, robot_urdf
 
-from arm1.description.sdf_world import parse_world
-from arm1.physics.diff_drive import DiffDrive
-from arm1.physics.link_motion import point_state
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.sdf_world import parse_world
+from _arm1sim.physics.diff_drive import DiffDrive
+from _arm1sim.physics.link_motion import point_state
+from _arm1sim.sim.simulation import Simulation
 
 GROUND = """<?xml version="1.0"?>
 <sdf version="1.6"><world name="default">

@@ -4,10 +4,10 @@
 import pytest
 from urdf_snippets import joint, link, sdf_tower
 
-from arm1.description.sdf_to_urdf import sdf_spawn
-from arm1.description.sdf_world import WorldConfig
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.description.sdf_to_urdf import sdf_spawn
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 
 def robot(*parts):

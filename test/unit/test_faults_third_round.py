@@ -10,12 +10,12 @@ from conftest import box_link
 from test_diff_drive import GROUND, run, spawn
 from urdf_snippets import joint, link
 
-from arm1.description.pose_math import normalized
-from arm1.description.sdf_world import WorldConfig, parse_world
-from arm1.physics.world import MAX_BODY_JOINTS
-from arm1.sim import model_state as ms
-from arm1.sim.model_state import State
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.description.pose_math import normalized
+from _arm1sim.description.sdf_world import WorldConfig, parse_world
+from _arm1sim.physics.world import MAX_BODY_JOINTS
+from _arm1sim.sim import model_state as ms
+from _arm1sim.sim.model_state import State
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 BOX = '<robot name="box">%s</robot>' % box_link('body')
 ARM = (

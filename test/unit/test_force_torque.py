@@ -7,7 +7,7 @@ import statistics
 import pytest
 from state_sensor_util import G, inertial, listen, robot, steps, world
 
-from arm1.physics.force_torque import ForceTorque
+from _arm1sim.physics.force_torque import ForceTorque
 
 
 def hanging(joint='fixed', child_com='0 0 -0.1', rpy='0 0 0', axis='1 0 0'):
@@ -116,7 +116,7 @@ def test_the_rate_noise_and_only_when_wanted(sim):
     ],
 )
 def test_a_plugin_gazebo_would_not_load_is_named(sim, caplog, params, named):
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         model = sim.spawn_urdf('r', robot(hanging(), ft(params)))
     assert model.sensors == []
     assert any(

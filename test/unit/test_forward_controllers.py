@@ -8,10 +8,10 @@ import math
 import pytest
 from conftest import FakeRobot, FakeRos, box_link, control_plugin, transmission
 
-from arm1.control.controller import ControllerError
-from arm1.control.registry import CONTROLLER_TYPES
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.control.controller import ControllerError
+from _arm1sim.control.registry import CONTROLLER_TYPES
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
 
 NS = '/iface'
 DT_NS = 1000000
@@ -154,7 +154,7 @@ def test_non_finite_command_is_refused_and_the_last_one_held(caplog):
     rig = Rig('velocity_controllers/JointVelocityController', joint='v1')
     rig.start()
     rig.command(1.0)
-    with caplog.at_level(logging.WARNING, logger='arm1.control'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.control'):
         assert rig.c.set_command(math.nan) is False
     rig.update()
     assert rig.cmd('v1') == 1.0
@@ -220,7 +220,7 @@ def test_group_command_of_the_wrong_size_is_dropped_with_upstreams_error(caplog)
     rig = Rig('velocity_controllers/JointGroupVelocityController', joints=['v1', 'v2'])
     rig.start()
     rig.command([1.0, 2.0])
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         rig.command([3.0, 4.0, 5.0])
     rig.update()
     assert [rig.cmd('v1'), rig.cmd('v2')] == [1.0, 2.0]

@@ -13,13 +13,13 @@ import pybullet as p
 import pytest
 from conftest import REPO_ROOT, WORLD_FILE, FakeRos
 
-from arm1.control.controller_manager import ControllerManager, ControllerManagerError
-from arm1.control.franka_gripper_sim import FrankaGripperSim
-from arm1.control.franka_interfaces import ROBOT_MODE_IDLE, ROBOT_MODE_MOVE
-from arm1.control.switching import switch_while_updating
-from arm1.description.sdf_world import read_world
-from arm1.sim.franka_hw_sim import FrankaHWSim
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.control.controller_manager import ControllerManager, ControllerManagerError
+from _arm1sim.control.franka_gripper_sim import FrankaGripperSim
+from _arm1sim.control.franka_interfaces import ROBOT_MODE_IDLE, ROBOT_MODE_MOVE
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.sim.franka_hw_sim import FrankaHWSim
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 _spec = importlib.util.spec_from_file_location(
     'toy_panda', os.path.join(REPO_ROOT, 'test', 'robots', 'toy_panda.py')
@@ -183,7 +183,7 @@ def test_gripper_moves_and_grasps(rig):
 
 def test_gripper_grasp_holds_when_the_fingers_are_blocked():
     """A grasp ends when the fingers rest, then presses with half the force on each."""
-    from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
+    from _arm1sim.control.hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
 
     class Hand:
         def __init__(self):
@@ -290,7 +290,7 @@ def test_a_mimic_finger_gets_no_effort_from_the_hardware():
     """franka_description's finger_joint2 has a URDF <mimic> of finger_joint1: the mimic drives
     it (issue 21: a follower gets no effort from the hardware interface), so an effort
     command for it is not applied on top of the mimic's motor."""
-    from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE
+    from _arm1sim.control.hardware_interface import EFFORT_JOINT_INTERFACE
 
     sim = Simulation(read_world(WORLD_FILE))
     text = toy_panda.urdf('toy').replace(

@@ -5,8 +5,8 @@ import os
 
 import rospkg
 
-from arm1.description.resource_paths import gazebo_paths
-from arm1.ros.common.packages import gazebo_exports
+from _arm1sim.description.resource_paths import gazebo_paths
+from _arm1sim.ros.common.packages import gazebo_exports
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="2">

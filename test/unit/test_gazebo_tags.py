@@ -7,11 +7,11 @@ import logging
 import pybullet as p
 import pytest
 
-from arm1.description.gazebo_tags import prepare_body
-from arm1.description.sdf_world import WorldConfig
-from arm1.description.surface import KD_DEFAULT
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.gazebo_tags import prepare_body
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.description.surface import KD_DEFAULT
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.simulation import Simulation
 
 INERTIAL = (
     '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" '
@@ -77,7 +77,7 @@ def test_unsupported_tags_are_named_once_at_spawn(caplog):
         '<minDepth>0.001</minDepth><material>Gazebo/Red</material></gazebo>'
     )
     urdf = box_robot('b', tags)
-    with caplog.at_level(logging.WARNING, logger='arm1.description'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.description'):
         _, options = prepare_body(urdf, parse_urdf(urdf), 'b')
     text = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
     assert len(text) == 3  # mu2, maxVel, minDepth: one each; material is not physics

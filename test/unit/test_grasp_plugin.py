@@ -8,14 +8,14 @@ import math
 import pytest
 from conftest import WORLD_FILE, FakeRos
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.switching import switch_while_updating
-from arm1.description.gazebo_plugins import model_plugins
-from arm1.description.sdf_world import read_world
-from arm1.description.urdf_model import parse_urdf
-from arm1.physics.grasp import GraspLogic, GraspParams, opposing
-from arm1.sim.grasp_plugin import grasp_params
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.gazebo_plugins import model_plugins
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.physics.grasp import GraspLogic, GraspParams, opposing
+from _arm1sim.sim.grasp_plugin import grasp_params
+from _arm1sim.sim.simulation import Simulation
 
 LEFT, RIGHT = (0.0, -2.0, 0.0), (0.0, 2.0, 0.0)  # forces on the box from two fingers
 
@@ -149,7 +149,7 @@ def test_parameters_and_upstreams_defaults():
 
 
 def test_an_angle_under_90_degrees_is_named(caplog):
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         grasp_params(plugin_spec('<forces_angle_tolerance>60</forces_angle_tolerance>'))
     assert 'forces_angle_tolerance' in caplog.text and 'gazebo_grasp_fix' in caplog.text
 

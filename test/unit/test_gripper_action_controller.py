@@ -8,19 +8,19 @@ import os
 import pytest
 from conftest import REPO_ROOT, WORLD_FILE, FakeRos
 
-from arm1.control.controller import ControllerError
-from arm1.control.gripper_action_controller import (
+from _arm1sim.control.controller import ControllerError
+from _arm1sim.control.gripper_action_controller import (
     GripperActionController,
     PositionGripperActionController,
 )
-from arm1.control.hardware_interface import (
+from _arm1sim.control.hardware_interface import (
     EFFORT_JOINT_INTERFACE,
     POSITION_JOINT_INTERFACE,
     JointHandle,
 )
-from arm1.control.registry import CONTROLLER_TYPES
-from arm1.description.sdf_world import read_world
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.registry import CONTROLLER_TYPES
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.sim.simulation import Simulation
 
 NS = '/bot'
 DT_NS = 1000000  # 1 kHz
@@ -213,14 +213,14 @@ def test_start_holds_where_the_joint_is():
 def test_a_non_finite_goal_is_rejected_and_logged(caplog):
     r = Rig()
     r.c.start_request(r.t)
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         gh = r.goal(float('nan'))
     assert gh.status == 'REJECTED'
     assert 'must be finite' in caplog.text
 
 
 def test_missing_gains_only_warn_and_leave_the_finger_without_effort(caplog):
-    with caplog.at_level(logging.WARNING, logger='arm1.control'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.control'):
         r = Rig(gains={})
     r.c.start_request(r.t)
     r.goal(0.05, max_effort=5.0)

@@ -11,12 +11,12 @@ import xacro
 import yaml
 from conftest import REPO_ROOT, FakeRos
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.switching import switch_while_updating
-from arm1.description.resource_paths import gazebo_paths
-from arm1.description.sdf_world import read_world
-from arm1.goal.pick_place import OBJECTS, TABLE_TOP, pick_lift
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.resource_paths import gazebo_paths
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.goal.pick_place import OBJECTS, TABLE_TOP, pick_lift
+from _arm1sim.sim.simulation import Simulation
 
 PICK_ARM = os.path.join(REPO_ROOT, 'test', 'robots', 'pick_arm')
 CONTROLLERS = ['joint_state_controller', 'lift_controller', 'gripper_controller']

@@ -6,11 +6,11 @@ import math
 import pytest
 from conftest import MIXED_URDF, FakeRobot
 
-from arm1.control.controller import ControllerError
-from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE, enforce_effort_limits
-from arm1.description.joint_limits import JointLimits, canonical_interface
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.control.controller import ControllerError
+from _arm1sim.control.hardware_interface import EFFORT_JOINT_INTERFACE, enforce_effort_limits
+from _arm1sim.description.joint_limits import JointLimits, canonical_interface
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
 
 ARM1_LIMITS = JointLimits(lower=-1.57, upper=1.57, effort=1.0, velocity=0.5)
 

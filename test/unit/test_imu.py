@@ -8,7 +8,7 @@ import statistics
 import pytest
 from state_sensor_util import G, box, listen, robot, steps, world
 
-from arm1.physics.imu import ImuModelPlugin, ImuSensor
+from _arm1sim.physics.imu import ImuModelPlugin, ImuSensor
 
 BOLTED = (
     '<link name="world"/><joint name="bolt" type="fixed"><parent link="world"/>'
@@ -156,7 +156,7 @@ def test_initial_orientation_as_reference(sim):
 
 
 def test_without_frame_name_the_plugin_is_not_loaded_and_named(sim, caplog):
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         model = spawn(sim, imu_sensor('<topicName>imu</topicName>'))
     assert model.sensors == []
     assert any(
@@ -220,14 +220,14 @@ def test_gazebo_ros_imu_turns_by_r_not_r_transposed(sim):
 
 
 def test_gazebo_ros_imu_without_body_is_not_loaded(sim, caplog):
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         model = spawn(sim, model_imu('<bodyName>nowhere</bodyName>'))
     assert model.sensors == []
     assert any("'nowhere'" in r.getMessage() for r in caplog.records)
 
 
 def test_a_rate_over_the_limit_fails_the_spawn_naming_the_plugin(sim):
-    from arm1.sim.simulation import SpawnError
+    from _arm1sim.sim.simulation import SpawnError
 
     params = '<frameName>f</frameName><updateRateHZ>5000</updateRateHZ>'
     with pytest.raises(SpawnError, match="plugin 'imu_plugin'.*sensor update rate is 5000"):

@@ -7,8 +7,8 @@ import math
 import pybullet as p
 import pytest
 
-from arm1.description.sdf_world import WorldConfig
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.sim.simulation import Simulation
 
 INERTIA = 0.02
 STEP = 0.001

@@ -5,10 +5,10 @@ import math
 import pytest
 from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos
 
-from arm1.control.controller import ControllerError
-from arm1.control.joint_position_controller import JointPositionController
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.control.controller import ControllerError
+from _arm1sim.control.joint_position_controller import JointPositionController
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
 
 NS = '/mixed_ns'
 DT = 0.001

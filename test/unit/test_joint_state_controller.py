@@ -3,10 +3,10 @@
 import pytest
 from conftest import JSC, MIXED_URDF, FakeRobot, FakeRos
 
-from arm1.control.controller import ControllerError
-from arm1.control.joint_state_controller import JointStateController
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.control.controller import ControllerError
+from _arm1sim.control.joint_state_controller import JointStateController
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
 
 STEP_NS = 1000000  # 1 ms
 

@@ -7,14 +7,14 @@ import math
 import pytest
 from conftest import FakeRos
 
-from arm1.control.controller import ControllerError
-from arm1.control.hardware_interface import (
+from _arm1sim.control.controller import ControllerError
+from _arm1sim.control.hardware_interface import (
     EFFORT_JOINT_INTERFACE,
     POSITION_JOINT_INTERFACE,
     VELOCITY_JOINT_INTERFACE,
     JointHandle,
 )
-from arm1.control.joint_trajectory_controller import (
+from _arm1sim.control.joint_trajectory_controller import (
     GOAL_TOLERANCE_VIOLATED,
     INVALID_GOAL,
     INVALID_JOINTS,
@@ -24,8 +24,8 @@ from arm1.control.joint_trajectory_controller import (
     PositionJointTrajectoryController,
     VelocityJointTrajectoryController,
 )
-from arm1.control.registry import CONTROLLER_TYPES
-from arm1.control.trajectory import Segment, State, hold_segment, sample
+from _arm1sim.control.registry import CONTROLLER_TYPES
+from _arm1sim.control.trajectory import Segment, State, hold_segment, sample
 
 NS = '/arm'
 DT_NS = 1000000  # 1 kHz

@@ -12,13 +12,13 @@ import pybullet as p
 import pytest
 from conftest import WORLD_FILE, box_link
 
-from arm1.description.gazebo_plugins import sensor_specs
-from arm1.description.limits import LimitError, Limits
-from arm1.description.ray_sensor import RaySpec, laser_plugin, ray_spec
-from arm1.description.sdf_world import read_world
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.physics.laser import Laser, interpolate, ray_directions
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.description.gazebo_plugins import sensor_specs
+from _arm1sim.description.limits import LimitError, Limits
+from _arm1sim.description.ray_sensor import RaySpec, laser_plugin, ray_spec
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.physics.laser import Laser, interpolate, ray_directions
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 HEIGHT = 1.0  # sensor height above the ground: horizontal rays never meet it
 WALL_X = 2.0  # the wall's centre; its front face is 0.1 nearer
@@ -273,7 +273,7 @@ def test_measured_only_while_wanted_and_at_its_rate(sim):
 def test_topic_and_a_plugin_in_the_wrong_sensor_type(sim, caplog):
     laser = laser_of(sim, mast_urdf(params='<topicName>laser/scan</topicName>'), ns='/ns')
     assert laser.topic == '/ns/laser/scan' and laser.plugin.namespace == '/ns'
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         model = sim.spawn_urdf('other', mast_urdf(kind='ray').replace('"mast"', '"other"', 1))
     assert model.sensors == []
     assert any(
@@ -286,7 +286,7 @@ def test_vertical_layers_are_concatenated_with_a_warning(sim, caplog):
         '<vertical><samples>3</samples><min_angle>-0.1</min_angle>'
         '<max_angle>0.1</max_angle></vertical>'
     )
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         laser = laser_of(
             sim, mast_urdf(ray_block(extra=extra), kind='ray', plugin='libgazebo_ros_laser.so')
         )
@@ -299,7 +299,7 @@ def test_vertical_layers_are_concatenated_with_a_warning(sim, caplog):
 
 
 def test_laser_scan_message_as_upstream_fills_it(sim):
-    from arm1.ros.plugins.laser_plugin import laser_message
+    from _arm1sim.ros.plugins.laser_plugin import laser_message
 
     laser = laser_of(sim, mast_urdf(ray_block(rmax=1.5)))
     reading = laser.reading(np.array([1.0, 1.5, 0.1, 0.7, 2.0]))
@@ -328,7 +328,7 @@ def test_laser_scan_message_as_upstream_fills_it(sim):
     ],
 )
 def test_frame_id_is_tf_resolved_as_upstream(monkeypatch, namespace, param, frame, expected):
-    from arm1.ros.plugins import frames
+    from _arm1sim.ros.plugins import frames
 
     params = dict([param]) if param else {}
     monkeypatch.setattr(frames.rospy, 'has_param', lambda key: key in params)

@@ -8,7 +8,7 @@ import logging
 import pytest
 from test_trajectory_chatter import JOINTS, largest_speed_at_the_end, trajectory_params
 
-from arm1.sim.limit_chatter import STEPS, LimitChatterWatch
+from _arm1sim.sim.limit_chatter import STEPS, LimitChatterWatch
 
 
 def test_the_watch_sees_sign_flips_beyond_the_limit_only():
@@ -50,8 +50,8 @@ def test_arm1_in_the_trap_is_warned_about_once_per_joint(arm1_urdf, lifted, capl
 
 
 def test_try_robot_reports_the_chatter_warning_as_a_problem():
-    from arm1.sim.limit_chatter import chatter_message
-    from arm1.tryout import report
+    from _arm1sim.sim.limit_chatter import chatter_message
+    from _arm1sim.tryout import report
 
     message = chatter_message('joint2', 0.5)
     rep = {

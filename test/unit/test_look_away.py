@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from arm1.goal.image import is_uniform
-from arm1.goal.look_away import LookAwayPolicy
+from _arm1sim.goal.image import is_uniform
+from _arm1sim.goal.look_away import LookAwayPolicy
 
 
 def image(pixels, step=None):

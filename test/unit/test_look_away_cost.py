@@ -5,7 +5,7 @@ import time
 
 import numpy as np
 
-from arm1.goal.image import is_uniform
+from _arm1sim.goal.image import is_uniform
 
 W, H = 640, 480
 

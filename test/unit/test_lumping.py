@@ -9,11 +9,11 @@ import xml.etree.ElementTree as ET
 import pybullet as p
 import pytest
 
-from arm1.description.gazebo_tags import prepare_body
-from arm1.description.lumping import FRAME_MASS, lump_fixed_joints, mass_of
-from arm1.description.sdf_world import WorldConfig
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.gazebo_tags import prepare_body
+from _arm1sim.description.lumping import FRAME_MASS, lump_fixed_joints, mass_of
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.simulation import Simulation
 
 
 def inertial(mass, xyz='0 0 0', ixx=0.01, iyy=0.01, izz=0.01):
@@ -157,7 +157,7 @@ def test_frame_and_link_pose_of_a_lumped_link_follow_its_parent(sim):
 
 
 def test_lumped_links_are_gone_from_the_gazebo_state_api_as_in_gazebo(sim):
-    from arm1.sim import model_state as ms
+    from _arm1sim.sim import model_state as ms
 
     sim.spawn_urdf('lumpy', ROBOT)
     names, _ = ms.link_states(sim)
@@ -194,7 +194,7 @@ def test_massless_link_on_a_moving_joint_is_warned_about_once_by_name(caplog):
         + joint('j', 'revolute', 'a', 'finger')
         + '</robot>'
     )
-    with caplog.at_level(logging.WARNING, logger='arm1.description'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.description'):
         out, options = prepare_body(urdf, parse_urdf(urdf), 'm')
     warnings = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
     assert len(warnings) == 1 and 'finger' in warnings[0] and '<inertial>' in warnings[0]
@@ -245,7 +245,7 @@ def test_a_long_fixed_chain_lumps_without_recursion():
 
 
 def test_a_bad_joint_origin_refuses_the_spawn_naming_the_joint(sim):
-    from arm1.sim.simulation import SpawnError
+    from _arm1sim.sim.simulation import SpawnError
 
     bad = ROBOT.replace(
         '<origin xyz="0.05 0 0" rpy="0 0 0"/>', '<origin xyz="0.05 0" rpy="0 0 0"/>'

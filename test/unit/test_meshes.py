@@ -10,8 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from arm1.paths import repo_path
-from arm1.physics.stl import read_stl, triangle_normals, write_binary_stl
+from _arm1sim.paths import repo_path
+from _arm1sim.physics.stl import read_stl, triangle_normals, write_binary_stl
 
 MESH_DIR = repo_path('meshes')
 GENERATOR = repo_path('tools', 'generate_meshes.py')

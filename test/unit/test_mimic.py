@@ -6,9 +6,9 @@ import os
 import pytest
 from conftest import REPO_ROOT, WORLD_FILE
 
-from arm1.description.sdf_world import read_world
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.sim.simulation import Simulation
 
 GRIPPER = os.path.join(REPO_ROOT, 'test', 'config', 'gripper_bot.urdf')
 
@@ -166,7 +166,7 @@ def bare():
 
 
 def chain_robot(client, tmp_path, lead_effort=1.0, follow_effort=2.0, offset=0.3):
-    from arm1.physics.robot import Robot
+    from _arm1sim.physics.robot import Robot
 
     path = tmp_path / 'chain.urdf'
     path.write_text(
@@ -249,7 +249,7 @@ def test_the_hardware_interface_never_writes_a_mimic_follower():
     (joint_states carry it) but no effort is ever written to it."""
     from conftest import FakeRobot
 
-    from arm1.sim.robot_hw_sim import DefaultRobotHWSim
+    from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
 
     with open(GRIPPER) as f:
         model = parse_urdf(f.read())

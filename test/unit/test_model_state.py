@@ -5,11 +5,11 @@ import math
 import pytest
 from conftest import box_link
 
-from arm1.description.sdf_world import WorldConfig
-from arm1.sim import model_state as ms
-from arm1.sim.model_state import State, StateError
-from arm1.sim.simulation import Simulation
-from arm1.sim.wrenches import JointEfforts, Wrenches
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.sim import model_state as ms
+from _arm1sim.sim.model_state import State, StateError
+from _arm1sim.sim.simulation import Simulation
+from _arm1sim.sim.wrenches import JointEfforts, Wrenches
 
 # The inertial sits off the link frame, so pybullet's centre-of-mass pose must be converted.
 BOX = '<robot name="box">%s</robot>' % box_link('body', xyz='0.02 0 0')
@@ -170,7 +170,7 @@ def test_set_link_state_moves_a_root_link_and_refuses_a_jointed_one(sim):
 
 
 def test_world_file_scenery_is_listed_and_readable():
-    from arm1.description.sdf_world import StaticModel
+    from _arm1sim.description.sdf_world import StaticModel
 
     config = WorldConfig()
     config.models = [StaticModel('ground_plane', (0, 0, 0, 0, 0, math.pi / 2), [])]

@@ -9,7 +9,7 @@ import pybullet as p
 import pytest
 from state_sensor_util import G, box, inertial, listen, robot, steps, world
 
-from arm1.physics.p3d import P3d
+from _arm1sim.physics.p3d import P3d
 
 
 def p3d(params):
@@ -160,7 +160,7 @@ def test_noise_goes_on_the_twist_only(weightless):
     ],
 )
 def test_a_plugin_gazebo_would_not_load_is_named(sim, caplog, params, named):
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         model = sim.spawn_urdf('r', robot(box('base'), p3d(params)))
     assert model.sensors == []
     text = [r.getMessage() for r in caplog.records]

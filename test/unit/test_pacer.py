@@ -2,7 +2,7 @@
 
 import pytest
 
-from arm1.sim.pacer import Pacer, RealTimeFactorMeter, wall_period
+from _arm1sim.sim.pacer import Pacer, RealTimeFactorMeter, wall_period
 
 
 class FakeClock:

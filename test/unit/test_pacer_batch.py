@@ -6,7 +6,7 @@ import time
 
 import pytest
 
-from arm1.sim.pacer import Pacer
+from _arm1sim.sim.pacer import Pacer
 
 
 class FakeClock:

@@ -8,7 +8,7 @@ import time
 import pytest
 from test_pacer_batch import FakeClock
 
-from arm1.sim.pacer import Pacer
+from _arm1sim.sim.pacer import Pacer
 
 
 @pytest.mark.parametrize('steps_per_wake', [1, 2])

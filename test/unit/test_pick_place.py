@@ -1,10 +1,10 @@
-"""arm1.goal.pick_place: the objects pick_arm picks, where its lift puts the finger tips, and
+"""_arm1sim.goal.pick_place: the objects pick_arm picks, where its lift puts the finger tips, and
 the hold verdict the pick rostests and the demo print."""
 
 import pytest
 
-from arm1.description.urdf_model import parse_urdf
-from arm1.goal.pick_place import (
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.goal.pick_place import (
     OBJECTS,
     TABLE_TOP,
     TIP_CLEARANCE,

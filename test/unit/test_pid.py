@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from arm1.control.pid import Pid, PidConfigError
+from _arm1sim.control.pid import Pid, PidConfigError
 
 
 # ----------------------------------------------------------------------------- parameters

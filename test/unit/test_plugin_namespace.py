@@ -4,9 +4,9 @@ one spawn_model sends (its caller's, '/' at top level), else the model name."""
 import pytest
 from conftest import box_link, control_plugin, transmission
 
-from arm1.description.sdf_world import WorldConfig
-from arm1.ros.tools.spawn_model import parse_args
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.ros.tools.spawn_model import parse_args
+from _arm1sim.sim.simulation import Simulation
 
 JOINT = """
   <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>

@@ -6,10 +6,10 @@ Real pybullet, the gripper driven through DefaultRobotHWSim by position controll
 import pytest
 from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, transmission
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.switching import switch_while_updating
-from arm1.description.sdf_world import read_world
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.sim.simulation import Simulation
 
 POS = 'hardware_interface/PositionJointInterface'
 LIFT_TOP = 0.12  # the lift's travel, m
@@ -116,8 +116,8 @@ def test_a_position_joint_pushes_with_at_most_its_effort_limit():
     """The force the motor may use is the URDF effort limit (none: a stiff 1e6)."""
     from conftest import FakeRobot
 
-    from arm1.description.urdf_model import parse_urdf
-    from arm1.sim.robot_hw_sim import UNLIMITED_MOTOR_FORCE, DefaultRobotHWSim
+    from _arm1sim.description.urdf_model import parse_urdf
+    from _arm1sim.sim.robot_hw_sim import UNLIMITED_MOTOR_FORCE, DefaultRobotHWSim
 
     urdf = GRIPPER.replace('effort="10"', 'effort="0"', 1)  # the left finger: no limit
     model = parse_urdf(urdf)
@@ -153,7 +153,7 @@ def test_a_jump_of_a_position_joint_is_carried_by_what_its_fingers_grip(sim, mon
     friction at 0.5 N a finger cannot give it, so in Gazebo the box is left behind a little at
     every jump. Here what the fingers grip takes the jump with them (physics.carry)."""
     if not carried:
-        monkeypatch.setattr('arm1.physics.robot.CARRY_MIN_CHANGE', float('inf'))
+        monkeypatch.setattr('_arm1sim.physics.robot.CARRY_MIN_CHANGE', float('inf'))
     ros = FakeRos({'carrier': CONTROLLERS})
     model, box = _weak_grip(sim, ros)
     start = box.robot.link_pose('box')[0][2]

@@ -8,10 +8,10 @@ OpenMANIPULATOR sits on it: docs/compatibility.md)."""
 import pytest
 from conftest import FakeRos, control_plugin, transmission
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.switching import switch_while_updating
-from arm1.description.sdf_world import WorldConfig
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.sdf_world import WorldConfig
+from _arm1sim.sim.simulation import Simulation
 
 INERTIA, P, STEP = 5e-4, 300.0, 0.001
 

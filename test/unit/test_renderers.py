@@ -7,10 +7,10 @@ import pybullet as p
 import pytest
 from conftest import REPO_ROOT, WORLD_FILE
 
-from arm1.description.sdf_world import read_world
-from arm1.physics import renderers
-from arm1.physics.render_process import render
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.physics import renderers
+from _arm1sim.physics.render_process import render
+from _arm1sim.sim.simulation import Simulation
 
 # two views of arm1 with joints bent: from the side and above, and close from behind
 VIEWS = [
@@ -141,7 +141,7 @@ def test_a_mesh_the_gl_backend_cannot_read_is_drawn_by_tinyrenderer_and_named_on
 
 
 def test_boxes_spheres_cylinders_and_capsules_land_where_tinyrenderer_puts_them():
-    from arm1.description.sdf_world import WorldConfig
+    from _arm1sim.description.sdf_world import WorldConfig
 
     colours = {'box': (1, 0, 0), 'sphere': (0, 1, 0), 'cylinder': (0, 0, 1), 'capsule': (1, 1, 0)}
     pictures = {}
@@ -187,9 +187,9 @@ def test_boxes_spheres_cylinders_and_capsules_land_where_tinyrenderer_puts_them(
 
 
 def test_a_world_with_an_unknown_renderer_names_it_and_steps_on(monkeypatch, caplog):
-    from arm1.description.camera_sensor import CameraSensor
-    from arm1.description.sdf_world import WorldConfig
-    from arm1.physics.sensor_manager import SensorManager
+    from _arm1sim.description.camera_sensor import CameraSensor
+    from _arm1sim.description.sdf_world import WorldConfig
+    from _arm1sim.physics.sensor_manager import SensorManager
 
     monkeypatch.setenv(renderers.ENV, 'vulkan')
     manager = SensorManager(WorldConfig(), 1, restart_delay=0.0, max_restarts=2)

@@ -6,9 +6,14 @@ import os
 import pybullet as p
 import pytest
 
-from arm1.description.resource_paths import SHARE, PackageExports, ResourceNotFound, gazebo_paths
-from arm1.description.sdf_world import read_world
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.resource_paths import (
+    SHARE,
+    PackageExports,
+    ResourceNotFound,
+    gazebo_paths,
+)
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.sim.simulation import Simulation
 
 BOX = """<?xml version="1.0"?>
 <robot name="box"><link name="box">

@@ -8,12 +8,12 @@ import math
 import pytest
 from conftest import WORLD_FILE, FakeRobot, FakeRos, box_link, control_plugin, transmission
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.switching import switch_while_updating
-from arm1.description.sdf_world import read_world
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.sim.robot_hw_sim import UNLIMITED_MOTOR_FORCE, DefaultRobotHWSim
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.sim.robot_hw_sim import UNLIMITED_MOTOR_FORCE, DefaultRobotHWSim
+from _arm1sim.sim.simulation import Simulation
 
 POS = 'hardware_interface/PositionJointInterface'
 VEL = 'hardware_interface/VelocityJointInterface'
@@ -173,7 +173,7 @@ def test_with_pid_gains_position_and_velocity_joints_are_driven_by_clamped_effor
 
 def test_gains_without_p_name_the_joint_and_leave_it_set_directly(fake, caplog):
     hw, robot = fake
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         hw.set_pid_gains({'grav': {'d': 1.0}})
     assert "joint 'grav'" in caplog.text and 'No p gain specified' in caplog.text
     hw.write()
@@ -182,7 +182,7 @@ def test_gains_without_p_name_the_joint_and_leave_it_set_directly(fake, caplog):
 
 def test_an_unsimulated_interface_leaves_the_joint_passive_with_upstreams_message(caplog):
     xml = URDF.replace(VEL, 'hardware_interface/PosVelJointInterface')
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         hw = DefaultRobotHWSim(parse_urdf(xml), FakeRobot(list(parse_urdf(xml).joints)))
     assert 'vel' not in hw.handles
     assert (
@@ -239,7 +239,7 @@ def test_joint_limits_parameters_override_the_urdfs_per_kind(fake):
 
 def test_bad_joint_limits_parameters_name_the_joint_and_keep_the_urdfs(fake, caplog):
     hw, robot = fake
-    with caplog.at_level(logging.ERROR, logger='arm1.control'):
+    with caplog.at_level(logging.ERROR, logger='_arm1sim.control'):
         hw.set_joint_limits({'pos': {'has_velocity_limits': True, 'max_velocity': 'fast'}})
     assert 'joint_limits/pos' in caplog.text
     robot.set('pos', 0.0)

@@ -6,9 +6,9 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from arm1.description.limits import Limits
-from arm1.description.pose_math import quat_from_rpy, rpy_from_quat
-from arm1.description.sdf_model import (
+from _arm1sim.description.limits import Limits
+from _arm1sim.description.pose_math import quat_from_rpy, rpy_from_quat
+from _arm1sim.description.sdf_model import (
     IDENTITY,
     SdfModelError,
     Tf,
@@ -18,9 +18,9 @@ from arm1.description.sdf_model import (
     parse_model,
     parse_sdf_text,
 )
-from arm1.description.sdf_to_urdf import sdf_spawn, to_urdf
-from arm1.description.sdf_world import parse_world
-from arm1.description.urdf_model import parse_urdf
+from _arm1sim.description.sdf_to_urdf import sdf_spawn, to_urdf
+from _arm1sim.description.sdf_world import parse_world
+from _arm1sim.description.urdf_model import parse_urdf
 
 
 def model(body, name='m', attrs=''):
@@ -317,8 +317,8 @@ def test_spawn_request_renames_the_model_and_composes_the_initial_pose():
 def test_world_models_load_into_pybullet_where_the_sdf_puts_them():
     """A static table keeps a dynamic can on it; a pendulum's links start where SDF says."""
     pytest.importorskip('pybullet')
-    from arm1.sim import model_state as ms
-    from arm1.sim.simulation import Simulation
+    from _arm1sim.sim import model_state as ms
+    from _arm1sim.sim.simulation import Simulation
 
     cfg = parse_world(
         '<sdf version="1.6"><world name="w">'
@@ -374,10 +374,10 @@ CUBE_FACES = [  # a unit cube's faces, outward vertex order
 def test_mesh_models_from_the_model_path_rest_on_a_static_box(tmp_path):
     """An STL and an OBJ cube (centred, scaled to 0.1 m) from model:// fall onto a static box."""
     pytest.importorskip('pybullet')
-    from arm1.description.resource_paths import ResourcePaths
-    from arm1.physics.stl import write_binary_stl
-    from arm1.sim import model_state as ms
-    from arm1.sim.simulation import Simulation
+    from _arm1sim.description.resource_paths import ResourcePaths
+    from _arm1sim.physics.stl import write_binary_stl
+    from _arm1sim.sim import model_state as ms
+    from _arm1sim.sim.simulation import Simulation
 
     meshes = tmp_path / 'cubes' / 'meshes'
     meshes.mkdir(parents=True)
@@ -422,7 +422,7 @@ def test_mesh_models_from_the_model_path_rest_on_a_static_box(tmp_path):
 def test_spawn_of_a_world_include_finds_the_model_and_takes_the_include_pose(tmp_path):
     """spawn_model -database sends <sdf><world><include>: the model on the model path is built,
     its relative mesh URIs from its own folder, at initial pose * the include's <pose>."""
-    from arm1.description.resource_paths import ResourcePaths
+    from _arm1sim.description.resource_paths import ResourcePaths
 
     (tmp_path / 'crate').mkdir()
     (tmp_path / 'crate' / 'model.sdf').write_text(
@@ -480,8 +480,8 @@ def test_a_long_chain_of_relative_frames_resolves_without_recursion():
 def test_fixed_joints_of_an_sdf_model_are_not_lumped():
     """Gazebo lumps fixed joints of URDFs only: an SDF model's links stay links."""
     pytest.importorskip('pybullet')
-    from arm1.sim import model_state as ms
-    from arm1.sim.simulation import Simulation
+    from _arm1sim.sim import model_state as ms
+    from _arm1sim.sim.simulation import Simulation
 
     cfg = parse_world(
         '<sdf version="1.6"><world name="w"><model name="cart"><pose>0 0 1 0 0 0</pose>'

@@ -5,9 +5,9 @@ import xml.etree.ElementTree as ET
 import pytest
 from conftest import WORLD_FILE
 
-from arm1.description.limits import Limits
-from arm1.description.resource_paths import ResourcePaths
-from arm1.description.sdf_world import SdfError, WorldConfig, parse_world, read_world
+from _arm1sim.description.limits import Limits
+from _arm1sim.description.resource_paths import ResourcePaths
+from _arm1sim.description.sdf_world import SdfError, WorldConfig, parse_world, read_world
 
 
 def world(body):

@@ -6,11 +6,11 @@ import time
 
 import pytest
 
-from arm1.description import safe_xml
-from arm1.description.limits import LimitError, Limits
-from arm1.description.mesh_limits import MeshError, count_triangles
-from arm1.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
-from arm1.physics.stl import write_binary_stl
+from _arm1sim.description import safe_xml
+from _arm1sim.description.limits import LimitError, Limits
+from _arm1sim.description.mesh_limits import MeshError, count_triangles
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
+from _arm1sim.physics.stl import write_binary_stl
 
 LAUGHS = (
     '<?xml version="1.0"?><!DOCTYPE robot [<!ENTITY lol "lol">'

@@ -6,12 +6,12 @@ import logging
 import pytest
 from conftest import WORLD_FILE, box_link
 
-from arm1.description.gazebo_plugins import sensor_specs, topic
-from arm1.description.sdf_world import read_world
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.physics.sim_sensor import SimSensor
-from arm1.sim import sensor_plugins
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.description.gazebo_plugins import sensor_specs, topic
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.physics.sim_sensor import SimSensor
+from _arm1sim.sim import sensor_plugins
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 PLUGIN = 'libarm1_test_counter.so'
 
@@ -107,7 +107,7 @@ def test_a_failing_builder_fails_the_spawn_and_leaves_nothing(sim, monkeypatch):
 
 def test_unimplemented_plugins_are_named_once_at_spawn(sim, caplog):
     extra = '<gazebo><plugin name="odd" filename="libgazebo_ros_odd.so"/></gazebo>'
-    with caplog.at_level(logging.WARNING, logger='arm1.physics'):
+    with caplog.at_level(logging.WARNING, logger='_arm1sim.physics'):
         sim.spawn_urdf('probe', probe_urdf(plugin='libgazebo_ros_nothing.so', extra=extra))
     text = [r.getMessage() for r in caplog.records]
     assert sum('libgazebo_ros_nothing.so' in t for t in text) == 1

@@ -16,10 +16,10 @@ from conftest import (
     transmission,
 )
 
-from arm1.control.controller_manager import STRICT, ControllerManager
-from arm1.control.switching import switch_while_updating
-from arm1.description.sdf_world import WorldConfig, read_world
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.control.controller_manager import STRICT, ControllerManager
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.sdf_world import WorldConfig, read_world
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 ARM1_JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']
 ARM1_CONTROLLERS = ['joint_state_controller'] + ['%s_position_controller' % j for j in ARM1_JOINTS]

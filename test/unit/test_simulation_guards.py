@@ -9,11 +9,11 @@ import os
 import pytest
 from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, pump_switch
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.switching import SwitchRequest
-from arm1.description.limits import Limits
-from arm1.description.sdf_world import WorldConfig, read_world
-from arm1.sim.simulation import Simulation, SpawnError
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.switching import SwitchRequest
+from _arm1sim.description.limits import Limits
+from _arm1sim.description.sdf_world import WorldConfig, read_world
+from _arm1sim.sim.simulation import Simulation, SpawnError
 
 CRATE = '<robot name="crate">%s</robot>' % box_link('crate')
 FIXED_ONLY = (

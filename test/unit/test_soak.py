@@ -3,7 +3,7 @@ section."""
 
 import pytest
 
-from arm1.bench.soak import judge, report
+from _arm1sim.bench.soak import judge, report
 
 
 def samples(minutes=5.0, rtf=1.0, rss0=100.0, rss_growth=0.0, stall=None, step=2.0):

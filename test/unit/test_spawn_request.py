@@ -7,8 +7,8 @@ import pytest
 from gazebo_msgs.srv import SpawnModelRequest
 from geometry_msgs.msg import Point, Pose, Quaternion
 
-from arm1.ros.world import spawn_request
-from arm1.ros.world.spawn_request import PiecewiseSpawnModel, PiecewiseSpawnModelRequest
+from _arm1sim.ros.world import spawn_request
+from _arm1sim.ros.world.spawn_request import PiecewiseSpawnModel, PiecewiseSpawnModelRequest
 
 
 def _wire(xml, name='m€', namespace='/ns', frame='world'):

@@ -1,11 +1,11 @@
 """The state sensors' readings as ROS messages: fields, frames, stamps and covariances as
 upstream fills them (no master needed)."""
 
-from arm1.physics.contact import ContactPair
-from arm1.physics.force_torque import WrenchReading
-from arm1.physics.imu import ImuReading
-from arm1.physics.p3d import P3dReading
-from arm1.ros.plugins.state_sensor_plugins import (
+from _arm1sim.physics.contact import ContactPair
+from _arm1sim.physics.force_torque import WrenchReading
+from _arm1sim.physics.imu import ImuReading
+from _arm1sim.physics.p3d import P3dReading
+from _arm1sim.ros.plugins.state_sensor_plugins import (
     contacts_message,
     imu_message,
     odometry_message,

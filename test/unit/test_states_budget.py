@@ -1,6 +1,6 @@
 """/gazebo/model_states' wall-time budget: every step at real time, bounded faster than that."""
 
-from arm1.ros.world.gazebo_state_api import BURST, MESSAGES_PER_SECOND, RateBudget
+from _arm1sim.ros.world.gazebo_state_api import BURST, MESSAGES_PER_SECOND, RateBudget
 
 
 class Clock:

@@ -9,11 +9,11 @@ import xml.etree.ElementTree as ET
 import pybullet as p
 import pytest
 
-from arm1.description.gazebo_tags import prepare_body
-from arm1.description.sdf_model import SdfModelError, parse_model
-from arm1.description.sdf_to_urdf import to_urdf
-from arm1.description.sdf_world import WorldConfig, parse_world
-from arm1.description.surface import (
+from _arm1sim.description.gazebo_tags import prepare_body
+from _arm1sim.description.sdf_model import SdfModelError, parse_model
+from _arm1sim.description.sdf_to_urdf import to_urdf
+from _arm1sim.description.sdf_world import WorldConfig, parse_world
+from _arm1sim.description.surface import (
     KD_DEFAULT,
     KP_DEFAULT,
     Surface,
@@ -22,9 +22,9 @@ from arm1.description.surface import (
     sdf_surface_tags,
     surface_from_tags,
 )
-from arm1.description.urdf_model import UrdfError, parse_urdf
-from arm1.physics.surface_combiner import solve
-from arm1.sim.simulation import Simulation
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf
+from _arm1sim.physics.surface_combiner import solve
+from _arm1sim.sim.simulation import Simulation
 
 SURFACE = (
     '<surface><friction><ode><mu>0.3</mu><mu2>0.3</mu2><fdir1>1 0 0</fdir1></ode></friction>'

@@ -10,10 +10,10 @@ import pytest
 import yaml
 from conftest import REPO_ROOT, FakeRos
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.control.switching import switch_while_updating
-from arm1.description.sdf_world import parse_world
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.control.switching import switch_while_updating
+from _arm1sim.description.sdf_world import parse_world
+from _arm1sim.sim.simulation import Simulation
 
 S = 10**9
 JOINTS = ['joint1', 'joint2', 'joint3', 'joint4']

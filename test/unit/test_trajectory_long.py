@@ -6,8 +6,8 @@ import time
 
 from test_joint_trajectory_controller import Rig
 
-from arm1.control import joint_trajectory_controller as jtc_module
-from arm1.control.trajectory import Segment, State, find_segment
+from _arm1sim.control import joint_trajectory_controller as jtc_module
+from _arm1sim.control.trajectory import Segment, State, find_segment
 
 POINTS = 100000
 

@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from arm1.tryout import grasp, grasp_cli
+from _arm1sim.tryout import grasp, grasp_cli
 
 
 def quat_about_z(angle):
@@ -147,7 +147,7 @@ def test_command_topics_another_node_could_command_on():
 def test_goal_outcome_names_the_state_and_error_code():
     from control_msgs.msg import FollowJointTrajectoryResult
 
-    from arm1.tryout.grasp_ros import goal_outcome
+    from _arm1sim.tryout.grasp_ros import goal_outcome
 
     assert goal_outcome(3, FollowJointTrajectoryResult(error_code=0)) == 'SUCCEEDED'
     aborted = FollowJointTrajectoryResult(error_code=-5)

@@ -5,9 +5,9 @@ import os
 
 import pytest
 
-from arm1.tryout import logs, report, workspace
-from arm1.tryout.cli import launch_args
-from arm1.tryout.probe import STEP, _target
+from _arm1sim.tryout import logs, report, workspace
+from _arm1sim.tryout.cli import launch_args
+from _arm1sim.tryout.probe import STEP, _target
 
 PACKAGE = '''<?xml version="1.0"?>
 <package format="2"><name>{name}</name><version>1.0.0</version>

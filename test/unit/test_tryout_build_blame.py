@@ -1,7 +1,7 @@
 """try_robot's package-by-package build verdict: which package a failed catkin_make log blames
-(arm1.tryout.workspace.blamed_packages), at CMake or at compile time."""
+(_arm1sim.tryout.workspace.blamed_packages), at CMake or at compile time."""
 
-from arm1.tryout.workspace import blamed_packages
+from _arm1sim.tryout.workspace import blamed_packages
 
 CMAKE_LOG = '''-- ~~  - robot_description
 -- ~~  - robot_gazebo

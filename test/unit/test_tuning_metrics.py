@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from arm1.tuning.metrics import Criteria, step_metrics, worst
-from arm1.tuning.recorded import find_steps, recorded_steps
+from _arm1sim.tuning.metrics import Criteria, step_metrics, worst
+from _arm1sim.tuning.recorded import find_steps, recorded_steps
 
 DT = 1e-4
 

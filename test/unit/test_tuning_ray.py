@@ -2,10 +2,10 @@
 
 import time
 
-from arm1.tuning import cli
-from arm1.tuning.evaluator import RAY_LOCAL, Evaluator
-from arm1.tuning.inputs import Setup
-from arm1.tuning.search import GainSearch
+from _arm1sim.tuning import cli
+from _arm1sim.tuning.evaluator import RAY_LOCAL, Evaluator
+from _arm1sim.tuning.inputs import Setup
+from _arm1sim.tuning.search import GainSearch
 
 
 def search(make, evaluator, tuned, seed):

@@ -11,15 +11,15 @@ import os
 import yaml
 from conftest import REPO_ROOT
 
-from arm1.tuning import cli
-from arm1.tuning.evaluator import Evaluator
-from arm1.tuning.inputs import Setup, parse_pose
-from arm1.tuning.metrics import Criteria, StepMetrics
-from arm1.tuning.report import verdict
-from arm1.tuning.save import with_gains
-from arm1.tuning.search import UNSTEADY, GainSearch, SearchSpace, score
-from arm1.tuning.session import measure_all
-from arm1.tuning.steps import StepRig
+from _arm1sim.tuning import cli
+from _arm1sim.tuning.evaluator import Evaluator
+from _arm1sim.tuning.inputs import Setup, parse_pose
+from _arm1sim.tuning.metrics import Criteria, StepMetrics
+from _arm1sim.tuning.report import verdict
+from _arm1sim.tuning.save import with_gains
+from _arm1sim.tuning.search import UNSTEADY, GainSearch, SearchSpace, score
+from _arm1sim.tuning.session import measure_all
+from _arm1sim.tuning.steps import StepRig
 
 NAMES = lambda joints: {j: '%s_position_controller' % j for j in joints}  # noqa: E731
 
@@ -273,7 +273,7 @@ class CannedEvaluator:
 
 
 def test_racing_runs_the_second_pose_only_for_steady_or_best_sets():
-    from arm1.tuning.steps import Protocol
+    from _arm1sim.tuning.steps import Protocol
 
     protocol = Protocol({'joint2': 1.0}, poses=[{'joint2': 0.6}])
     base = {
@@ -300,7 +300,7 @@ def test_racing_runs_the_second_pose_only_for_steady_or_best_sets():
 def test_racing_tries_a_steady_set_at_the_second_pose_however_far_it_overshoots():
     """Steady is settled and still, whatever the overshoot: a set with 150 % overshoot that
     settles scores above UNSTEADY, yet it must not be dropped as if it shook."""
-    from arm1.tuning.steps import Protocol
+    from _arm1sim.tuning.steps import Protocol
 
     protocol = Protocol({'joint2': 1.0}, poses=[{'joint2': 0.6}])
     base = {

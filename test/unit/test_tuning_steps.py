@@ -6,13 +6,13 @@ import os
 import pytest
 from conftest import JPC, MIXED_URDF, WORLD_FILE, FakeRobot
 
-from arm1.control.joint_position_controller import JointPositionController
-from arm1.description.urdf_model import parse_urdf
-from arm1.sim.robot_hw_sim import DefaultRobotHWSim
-from arm1.tuning.local_ros import LocalRos
-from arm1.tuning.metrics import worst
-from arm1.tuning.save import with_gains
-from arm1.tuning.steps import ARM1_START, Protocol, StepRig, yaml_pid
+from _arm1sim.control.joint_position_controller import JointPositionController
+from _arm1sim.description.urdf_model import parse_urdf
+from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
+from _arm1sim.tuning.local_ros import LocalRos
+from _arm1sim.tuning.metrics import worst
+from _arm1sim.tuning.save import with_gains
+from _arm1sim.tuning.steps import ARM1_START, Protocol, StepRig, yaml_pid
 
 SHORT = Protocol(dict(ARM1_START), step=0.3, settle=0.2, hold=1.0)
 
@@ -142,7 +142,7 @@ def test_yaml_snippet_round_trips(controllers_params):
     params = with_gains(
         controllers_params, '/arm1', {'joint2': 'joint2_position_controller'}, {'joint2': g}
     )
-    from arm1.control.pid import Pid
+    from _arm1sim.control.pid import Pid
 
     assert Pid.from_params(params['arm1']['joint2_position_controller']['pid']).gains() == g
     assert controllers_params['arm1']['joint2_position_controller']['pid']['p'] == 1
@@ -155,8 +155,8 @@ def test_metrics_from_a_rosbag_match_the_simulated_step(rig, tmp_path):
     from sensor_msgs.msg import JointState
     from std_msgs.msg import Float64
 
-    from arm1.ros.tools.bag import read_run
-    from arm1.tuning.recorded import recorded_steps
+    from _arm1sim.ros.tools.bag import read_run
+    from _arm1sim.tuning.recorded import recorded_steps
 
     run = rig.run('joint4', SHORT)
     path = os.path.join(str(tmp_path), 'run.bag')

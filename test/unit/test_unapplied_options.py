@@ -1,7 +1,7 @@
 """What the world node logs about gzserver options and gazebo_ros launch arguments it accepts
 but cannot apply (ros/world/unapplied_options.py): one line each, none for the defaults."""
 
-from arm1.ros.world.unapplied_options import unapplied_options
+from _arm1sim.ros.world.unapplied_options import unapplied_options
 
 DEFAULTS = {'debug': False, 'gui_required': False, 'use_clock_frequency': True}
 
@@ -34,7 +34,7 @@ def test_each_unapplied_option_is_one_line_naming_it():
 
 
 def test_gzserver_command_line_takes_gazebos_options_without_mistaking_their_values():
-    from arm1.ros.world.world_node import parse_args
+    from _arm1sim.ros.world.world_node import parse_args
 
     args = parse_args(
         ['-u', '-r', '-e', 'bullet', '--seed', '7', '-s', 'libx.so', '--bogus', 'worlds/x.world']

@@ -2,8 +2,8 @@
 commented out of its URDF but not of its .gazebo.xacro) is left out with a warning at spawn,
 as Gazebo's URDF->SDF leaves it out, instead of refusing the model."""
 
-from arm1.description.gazebo_plugins import sensor_specs, unimplemented
-from arm1.description.urdf_model import parse_urdf
+from _arm1sim.description.gazebo_plugins import sensor_specs, unimplemented
+from _arm1sim.description.urdf_model import parse_urdf
 
 URDF = '''<robot name="r">
   <link name="base"/>

@@ -6,10 +6,10 @@ import xml.etree.ElementTree as ET
 import pytest
 from conftest import MIXED_URDF, REPO_ROOT, box_link, control_plugin, transmission
 
-from arm1.control.hardware_interface import EFFORT_JOINT_INTERFACE
-from arm1.description.limits import LimitError, Limits
-from arm1.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
-from arm1.physics.stl import write_binary_stl
+from _arm1sim.control.hardware_interface import EFFORT_JOINT_INTERFACE
+from _arm1sim.description.limits import LimitError, Limits
+from _arm1sim.description.urdf_model import UrdfError, parse_urdf, resolve_mesh_uris
+from _arm1sim.physics.stl import write_binary_stl
 
 ARM1_LIMITS = {
     'joint1': (-1.57, 1.57),

@@ -5,10 +5,10 @@ from types import SimpleNamespace
 import pytest
 from conftest import WORLD_FILE
 
-from arm1.control.controller_manager import ControllerManager
-from arm1.description.sdf_world import read_world
-from arm1.ros.world.web_snapshot import WorldSnapshots
-from arm1.sim.simulation import Simulation
+from _arm1sim.control.controller_manager import ControllerManager
+from _arm1sim.description.sdf_world import read_world
+from _arm1sim.ros.world.web_snapshot import WorldSnapshots
+from _arm1sim.sim.simulation import Simulation
 
 
 class Calls:

@@ -1,7 +1,7 @@
 """A world file with a blank line before its <?xml?> declaration (kinova-ros's jaco.world)
 loads, as Gazebo loads it (TinyXML skips leading whitespace)."""
 
-from arm1.description.sdf_world import parse_world
+from _arm1sim.description.sdf_world import parse_world
 
 WORLD = '''
 <?xml version="1.0" ?>

@@ -3,7 +3,7 @@
 import threading
 import time
 
-from arm1.description import safe_xml
+from _arm1sim.description import safe_xml
 
 
 def _big_urdf(links: int) -> str:
