@@ -62,11 +62,11 @@ APT_PACKAGES := \
 # A change to any of these rebuilds the workspace (python modules under
 # src/_arm1sim need no rebuild: the devel space imports them from src/).
 BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
-  $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/cfg/*.cfg $(ROOT)/env-hooks/*) \
+  $(wildcard $(ROOT)/msg/*.msg $(ROOT)/srv/*.srv $(ROOT)/env-hooks/*) \
   $(filter-out %/__pycache__,$(wildcard $(ROOT)/scripts/*)) \
   $(wildcard $(ROOT)/src/*/__init__.py) $(ROOT)/tools/make_compat_packages.py \
   $(wildcard $(ROOT)/tools/compat_*.py) \
-  $(wildcard $(ROOT)/tools/compat_msgs/*/*/*)
+  $(wildcard $(ROOT)/tools/compat_msgs/*/*/*) $(wildcard $(ROOT)/tools/compat_cfg/*/*)
 
 .PHONY: setup venv build demo test test-stress lint bench soak clean link-package
 

@@ -2,9 +2,11 @@
 
 The same files and arguments as gazebo_ros (noetic-devel) ships, so launch files that
 include them (with any of their arguments) run unchanged: empty_world.launch hands its
-arguments to arm1's launch/empty_world.launch, whose world node applies or explains each
-one; the world launch files name worlds of arm1's own with the same meaning
-(gazebo_share/worlds, found on GAZEBO_RESOURCE_PATH as Gazebo's are).
+arguments to world_node.launch, written here from arm1's launch/empty_world.launch with
+gazebo_ros's own gzserver (so nothing in gazebo_ros names the package arm1, which a user's
+own package of that name would hide); the world node applies or explains each argument.
+The world launch files name worlds of arm1's own with the same meaning (gazebo_share/worlds,
+found on GAZEBO_RESOURCE_PATH as Gazebo's are).
 """
 
 from __future__ import annotations
@@ -12,9 +14,10 @@ from __future__ import annotations
 import os
 from typing import Callable, List, Tuple
 
-GAZEBO_SHARE_WORLDS = os.path.join(
-    os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'gazebo_share', 'worlds'
-)
+ARM1 = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+GAZEBO_SHARE_WORLDS = os.path.join(ARM1, 'gazebo_share', 'worlds')
+ARM1_WORLD_LAUNCH = os.path.join(ARM1, 'launch', 'empty_world.launch')
+ARM1_GZSERVER = 'pkg="arm1" type="gzserver"'
 
 # gazebo_ros/launch/empty_world.launch's 17 arguments and defaults, in its order.
 EMPTY_WORLD_ARGS: List[Tuple[str, str]] = [
@@ -50,7 +53,7 @@ EMPTY_WORLD = '''<launch>
   <!-- gazebo_ros/launch/empty_world.launch: upstream's 17 arguments (then arm1's own),
        all handed to arm1's pybullet world, which applies each or logs once why not. -->
 {args}
-  <include file="$(find arm1)/launch/empty_world.launch" pass_all_args="true"/>
+  <include file="$(find gazebo_ros)/launch/world_node.launch" pass_all_args="true"/>
 </launch>
 '''
 
@@ -133,8 +136,18 @@ def _passed(args: List[Tuple[str, str]], leave_out: Tuple[str, ...] = ()) -> str
     )
 
 
+def world_node_launch() -> str:
+    """arm1's launch/empty_world.launch, starting gazebo_ros's gzserver instead of arm1's."""
+    with open(ARM1_WORLD_LAUNCH) as f:
+        text = f.read()
+    if text.count(ARM1_GZSERVER) != 1:
+        raise ValueError('%s: expected one <node %s>' % (ARM1_WORLD_LAUNCH, ARM1_GZSERVER))
+    return text.replace(ARM1_GZSERVER, 'pkg="gazebo_ros" type="gzserver"')
+
+
 def make_gazebo_ros_launch(dest: str, write: Callable[..., None]) -> None:
     launch = os.path.join(dest, 'gazebo_ros', 'launch')
+    write(os.path.join(launch, 'world_node.launch'), world_node_launch())
     write(
         os.path.join(launch, 'empty_world.launch'),
         EMPTY_WORLD.format(args=_args(EMPTY_WORLD_ARGS + ARM1_ARGS)),

@@ -18,6 +18,9 @@ from __future__ import annotations
 import os
 from typing import Callable, Dict, List, Tuple
 
+# dynamic_reconfigure definitions a stand-in generates, by package (control_toolbox's PID)
+CFG_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'compat_cfg')
+
 GAZEBO_VERSION = '11.10.2'  # Debian 12's and Ubuntu 20.04's Gazebo 11
 GAZEBO_ROS_PKGS_VERSION = '2.9.2'
 ROS_CONTROL_VERSION = '0.20.0'
@@ -263,14 +266,13 @@ PACKAGE_XML = '''<?xml version="1.0"?>
   <maintainer email="arm1@example.invalid">arm1 developers</maintainer>
   <license>BSD</license>
   <buildtool_depend>catkin</buildtool_depend>
-{depends}  <exec_depend>arm1</exec_depend>
-</package>
+{depends}</package>
 '''
 
 CMAKELISTS = '''cmake_minimum_required(VERSION 3.12)
 project({name})
 find_package(catkin REQUIRED{components})
-catkin_package({exports}CFG_EXTRAS {name}-extras.cmake)
+{before}catkin_package({exports}CFG_EXTRAS {name}-extras.cmake)
 '''
 
 # Run in the package that finds the stand-in (its PROJECT_NAME, its build dir): the
@@ -320,6 +322,14 @@ DESCRIPTION = (
 )
 
 
+def dynamic_reconfigure_files(name: str) -> List[str]:
+    """The stand-in's dynamic_reconfigure definitions (tools/compat_cfg/<name>/*.cfg)."""
+    folder = os.path.join(CFG_DIR, name)
+    return (
+        sorted(f for f in os.listdir(folder) if f.endswith('.cfg')) if os.path.isdir(folder) else []
+    )
+
+
 def make_stand_ins(
     dest: str, write: Callable[..., None], extra_depends: Dict[str, List[str]]
 ) -> None:
@@ -327,7 +337,13 @@ def make_stand_ins(
     gives scripts too (gazebo_ros, controller_manager) keep those, and get these exports."""
     for name, (version, depends, headers) in STAND_INS.items():
         depends = depends + [d for d in extra_depends.get(name, []) if d not in depends]
+        cfgs = dynamic_reconfigure_files(name)
+        if cfgs and 'dynamic_reconfigure' not in depends:
+            depends = depends + ['dynamic_reconfigure']
         root = os.path.join(dest, name)
+        for cfg in cfgs:
+            with open(os.path.join(CFG_DIR, name, cfg)) as f:
+                write(os.path.join(root, 'cfg', cfg), f.read(), executable=True)
         write(
             os.path.join(root, 'package.xml'),
             PACKAGE_XML.format(
@@ -345,6 +361,12 @@ def make_stand_ins(
             CMAKELISTS.format(
                 name=name,
                 components=' COMPONENTS ' + ' '.join(depends) if depends else '',
+                before=(
+                    'generate_dynamic_reconfigure_options(%s)\n'
+                    % ' '.join('cfg/' + c for c in cfgs)
+                    if cfgs
+                    else ''
+                ),
                 exports=exports,
             ),
         )

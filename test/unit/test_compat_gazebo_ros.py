@@ -69,3 +69,34 @@ def test_each_world_launch_names_a_world_of_ours(tmp_path):
     range_world = tmp_path / 'gazebo_plugins' / 'test' / 'test_worlds' / 'gazebo_ros_range.world'
     assert range_world.is_file()
     assert _args(launch / 'range_world.launch')['world'] == 'gazebo_ros_range'
+
+
+def test_no_stand_in_names_the_arm1_package(tmp_path) -> None:
+    """A user's own package named arm1 (the tutorial's name) overlays ours: a stand-in that
+    depended on, found or started anything of package arm1 would get theirs (issue 29)."""
+    _make(tmp_path)
+    offending = []
+    for root, _, files in os.walk(str(tmp_path)):
+        for name in files:
+            path = os.path.join(root, name)
+            with open(path, encoding='utf-8', errors='replace') as f:
+                text = f.read()
+            for needle in ('$(find arm1)', 'pkg="arm1"', '<exec_depend>arm1<', '<depend>arm1<'):
+                if needle in text:
+                    offending.append('%s: %s' % (os.path.relpath(path, str(tmp_path)), needle))
+    assert offending == []
+    world = ET.parse(str(tmp_path / 'gazebo_ros' / 'launch' / 'world_node.launch'))
+    (node,) = list(world.getroot().iter('node'))
+    assert (node.get('pkg'), node.get('type')) == ('gazebo_ros', 'gzserver')
+
+
+def test_pid_gains_are_control_toolbox_parameters(tmp_path) -> None:
+    """The live PID gains' dynamic_reconfigure type is upstream's control_toolbox/Parameters,
+    generated in the control_toolbox stand-in (not in package arm1)."""
+    _make(tmp_path)
+    pkg = tmp_path / 'control_toolbox'
+    assert (pkg / 'cfg' / 'Parameters.cfg').is_file()
+    cmake = (pkg / 'CMakeLists.txt').read_text()
+    assert 'generate_dynamic_reconfigure_options(cfg/Parameters.cfg)' in cmake
+    assert cmake.index('generate_dynamic_reconfigure_options') < cmake.index('catkin_package(')
+    assert '<depend>dynamic_reconfigure</depend>' in (pkg / 'package.xml').read_text()

@@ -78,7 +78,7 @@ def test_serve_config_is_offered_by_node_handles_that_have_it():
     c = JointPositionController()
     c.init(hw, ros.node_handle('/ns'), nh)
     ((ns, type_name, current, cb),) = served
-    assert (ns, type_name) == ('pid', 'arm1/Pid')
+    assert (ns, type_name) == ('pid', 'control_toolbox/Parameters')
     assert current == dict(p=2.0, i=0.0, d=0.0, i_clamp_max=0.0, i_clamp_min=-0.0, antiwindup=False)
     assert cb({'p': 5.0})['p'] == 5.0
 

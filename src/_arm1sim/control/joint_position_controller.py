@@ -58,7 +58,9 @@ class JointPositionController(Controller):
         # Live gains at <controller>/pid, as control_toolbox's Pid serves them with
         # dynamic_reconfigure; a node handle that is no ConfigServer offers none.
         if isinstance(controller_nh, ConfigServer):
-            controller_nh.serve_config('pid', 'arm1/Pid', self.pid.gains(), self.set_gains)
+            controller_nh.serve_config(
+                'pid', 'control_toolbox/Parameters', self.pid.gains(), self.set_gains
+            )
 
     def set_gains(self, gains: Mapping[str, Any]) -> Gains:
         """New PID gains (keys of Pid.gains(); missing ones keep their value). Thread-safe:

@@ -5,7 +5,7 @@ Pid::initDynamicReconfig offers it in Gazebo.
 rqt_reconfigure) calls the controller's ``set_gains``; the gains apply at its next
 update, show in ``<controller>/state`` and are written back to the parameter server
 under ``<controller>/pid/``. The server starts from the controller's own gains (its
-``pid/*`` parameters), not from the defaults in cfg/Pid.cfg, as control_toolbox does.
+``pid/*`` parameters), not from the cfg's defaults, as control_toolbox does.
 """
 
 import importlib
@@ -16,7 +16,7 @@ from dynamic_reconfigure.server import Server
 log = logging.getLogger('_arm1sim.ros')
 
 # node-handle type name -> module generated from cfg/*.cfg
-CONFIG_MODULES = {'arm1/Pid': 'arm1.cfg.PidConfig'}
+CONFIG_MODULES = {'control_toolbox/Parameters': 'control_toolbox.cfg.ParametersConfig'}
 
 
 def config_type(type_name):
