@@ -45,6 +45,7 @@ APT_PACKAGES := \
   python3-rosgraph-msgs python3-trajectory-msgs python3-actionlib-msgs python3-actionlib \
   ros-std-msgs libstd-msgs-dev ros-geometry-msgs libgeometry-msgs-dev \
   ros-sensor-msgs libsensor-msgs-dev ros-std-srvs libstd-srvs-dev \
+  python3-shape-msgs ros-shape-msgs libshape-msgs-dev \
   ros-rosgraph-msgs libros-rosgraph-msgs-dev \
   ros-trajectory-msgs libtrajectory-msgs-dev ros-actionlib-msgs libactionlib-msgs-dev \
   python3-nav-msgs ros-nav-msgs libnav-msgs-dev python3-tf2-msgs ros-tf2-msgs \

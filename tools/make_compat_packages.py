@@ -78,6 +78,26 @@ MSG_PACKAGES = {
     'franka_gripper': ('0.10.1', ['actionlib_msgs']),
     # gazebo-pkgs' (master) grasp event, which arm1's grasp plugin publishes
     'gazebo_grasp_plugin_ros': ('0.0.1', []),
+    # MoveIt 1's interface (moveit_msgs noetic 0.11.4) and the two packages it uses, for the
+    # move_group and moveit_commander stand-ins
+    'octomap_msgs': ('0.3.5', ['std_msgs', 'geometry_msgs']),
+    'object_recognition_msgs': (
+        '0.4.2',
+        ['std_msgs', 'geometry_msgs', 'sensor_msgs', 'shape_msgs', 'actionlib_msgs'],
+    ),
+    'moveit_msgs': (
+        '0.11.4',
+        [
+            'std_msgs',
+            'geometry_msgs',
+            'sensor_msgs',
+            'shape_msgs',
+            'trajectory_msgs',
+            'actionlib_msgs',
+            'octomap_msgs',
+            'object_recognition_msgs',
+        ],
+    ),
 }
 DEFINITIONS = os.path.join(ARM1, 'tools', 'compat_msgs')
 KINDS = (('msg', 'add_message_files'), ('srv', 'add_service_files'), ('action', 'add_action_files'))
