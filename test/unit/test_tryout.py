@@ -7,7 +7,7 @@ import pytest
 
 from _arm1sim.tryout import logs, report, workspace
 from _arm1sim.tryout.cli import launch_args
-from _arm1sim.tryout.probe import STEP, _target
+from _arm1sim.tryout.probe import STEP, _target, remapped
 
 PACKAGE = '''<?xml version="1.0"?>
 <package format="2"><name>{name}</name><version>1.0.0</version>
@@ -132,3 +132,18 @@ def test_verdict_names_each_failure():
         'ok': False,
         'problems': ['the bringup did not come up: x'],
     }
+
+
+def test_a_remapped_action_is_the_one_offered_name_no_controller_has_by_default():
+    # ROS-Industrial's abb_irb120_gazebo: <remap from="/arm_controller/follow_joint_trajectory"
+    # to="/joint_trajectory_action"/> before the world; the gripper's stays where it was.
+    offered = ['/gripper_controller/follow_joint_trajectory', '/joint_trajectory_action']
+    defaults = [
+        '/arm_controller/follow_joint_trajectory',
+        '/gripper_controller/follow_joint_trajectory',
+    ]
+    assert remapped(defaults[0], offered, defaults) == '/joint_trajectory_action'
+    assert remapped(defaults[1], offered, defaults) == defaults[1]
+    # two remapped names: which is whose cannot be told; none: nothing to find
+    assert remapped(defaults[0], offered + ['/other_action'], defaults) is None
+    assert remapped(defaults[0], offered[:1], defaults) is None

@@ -326,10 +326,18 @@ def motion(
 ) -> List[Dict[str, Any]]:
     """A trajectory goal to each running trajectory controller; a command to each running
     position controller (up to 8)."""
+    import rosgraph
+
     from _arm1sim.tryout import probe
 
     states = probe.JointStates()
     checks: List[Dict[str, Any]] = []
+    trajectory = tuple(
+        rosgraph.names.ns_join(ns, str(c['name']))
+        for ns, controllers in managers.items()
+        for c in controllers
+        if str(c.get('type')).endswith(probe.JTC_SUFFIX)
+    )
     commanded = 0
     try:
         for ns, controllers in managers.items():
@@ -340,7 +348,7 @@ def motion(
                 try:
                     if ctype.endswith(probe.JTC_SUFFIX):
                         progress('FollowJointTrajectory goal to %s (%s)' % (c['name'], ctype))
-                        check = probe.trajectory_goal(ns, c, states, limits)
+                        check = probe.trajectory_goal(ns, c, states, limits, siblings=trajectory)
                     elif (
                         ctype in probe.POSITION_TYPES or ctype in probe.GROUP_POSITION_TYPES
                     ) and commanded < 8:

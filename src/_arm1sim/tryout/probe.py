@@ -25,6 +25,8 @@ GROUP_POSITION_TYPES = (
     'position_controllers/JointGroupPositionController',
     'effort_controllers/JointGroupPositionController',
 )
+ACTION_RESULT = 'control_msgs/FollowJointTrajectoryActionResult'
+CONTROLLER_STATE = 'control_msgs/JointTrajectoryControllerState'
 STEP = 0.15  # rad (or m) each joint is asked to move
 MOVED = 0.5  # a joint moved if it covered this share of STEP
 
@@ -62,6 +64,26 @@ def node_alive(name: str) -> bool:
         return True
     except Exception:  # not registered, refused, timed out
         return False
+
+
+def offered(msg_type: str, suffix: str = '') -> List[str]:
+    """Topics of that type with a publisher now, without the suffix (an action's '/result')."""
+    return sorted(
+        t[: len(t) - len(suffix)]
+        for t, ty in master().getTopicTypes()
+        if ty == msg_type and t.endswith(suffix)
+    )
+
+
+def remapped(default: str, offered: List[str], defaults: List[str]) -> Optional[str]:
+    """Where a launch file's <remap> put a controller's topic or action: default when it is
+    offered, else the one offered name no controller has by default (ROS-Industrial's
+    bringups remap arm_controller/follow_joint_trajectory to /joint_trajectory_action and
+    arm_controller/state to /feedback_states); None when there is not exactly one."""
+    if default in offered:
+        return default
+    left = [o for o in offered if o not in defaults]
+    return left[0] if len(left) == 1 else None
 
 
 def controller_managers() -> List[str]:
@@ -323,9 +345,12 @@ def trajectory_goal(
     states: JointStates,
     limits: Dict[str, dict],
     duration: float = 2.0,
+    siblings: Tuple[str, ...] = (),
 ) -> Dict[str, Any]:
     """A FollowJointTrajectory goal over all the controller's joints, STEP away, with no
-    tolerances of its own: the controller's constraints (the package's yaml) judge it."""
+    tolerances of its own: the controller's constraints (the package's yaml) judge it.
+    siblings: every trajectory controller's full name (their action and state topics'
+    default names, to tell which remapped name is this one's)."""
     import actionlib
     from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal
     from trajectory_msgs.msg import JointTrajectoryPoint
@@ -335,11 +360,20 @@ def trajectory_goal(
         rosgraph.names.ns_join(ns, name + '/joints'),
         list(controller['joints']),
     )
-    action = rosgraph.names.ns_join(ns, name + '/follow_joint_trajectory')
+    default = rosgraph.names.ns_join(ns, name + '/follow_joint_trajectory')
+    action = (
+        remapped(
+            default,
+            offered(ACTION_RESULT, '/result'),
+            [s + '/follow_joint_trajectory' for s in siblings],
+        )
+        or default
+    )
     out: Dict[str, Any] = {
         'controller': rosgraph.names.ns_join(ns, name),
         'type': controller['type'],
         'action': action,
+        'remapped_from': default if action != default else None,
         'joints': joints,
         'ok': False,
     }
@@ -351,7 +385,9 @@ def trajectory_goal(
     # An effort-controlled arm started while falling holds where its stop trajectory ended,
     # which may be inside the ground it now lies on (as in Gazebo): the path tolerance would
     # abort any goal at once. A restart holds the measured pose, as a user would do.
-    error = hold_error(ns, name)
+    state = rosgraph.names.ns_join(ns, name + '/state')
+    state = remapped(state, offered(CONTROLLER_STATE), [s + '/state' for s in siblings]) or state
+    error = hold_error(state)
     out['hold_error_before'] = error
     path = [
         rospy.get_param(rosgraph.names.ns_join(ns, '%s/constraints/%s/trajectory' % (name, j)), 0.0)
@@ -363,7 +399,7 @@ def trajectory_goal(
         restart(ns, name)
         out['restarted_to_hold_the_measured_pose'] = True
         time.sleep(1.0)
-        out['hold_error_after_restart'] = hold_error(ns, name)
+        out['hold_error_after_restart'] = hold_error(state)
     start = states.wait(joints)
     target = {j: _target(start[j], limits.get(j)) for j in joints}
     goal = FollowJointTrajectoryGoal()
@@ -406,11 +442,10 @@ def trajectory_goal(
     return out
 
 
-def hold_error(ns: str, name: str) -> Optional[Dict[str, float]]:
+def hold_error(topic: str) -> Optional[Dict[str, float]]:
     """A trajectory controller's position error per joint, from its state topic."""
     from control_msgs.msg import JointTrajectoryControllerState
 
-    topic = rosgraph.names.ns_join(ns, name + '/state')
     try:
         msg = rospy.wait_for_message(topic, JointTrajectoryControllerState, 3.0)
     except rospy.ROSException:

@@ -69,6 +69,8 @@ def _motion_line(m: Dict[str, Any]) -> str:
         )
         if not m.get('finished'):
             text += ', no result in time'
+        if m.get('remapped_from'):
+            text += ', on %s (remapped from %s)' % (m.get('action'), m['remapped_from'])
         vel = [abs(v) for v in (m.get('final_velocity') or {}).values() if v is not None]
         if code == -5 and vel:  # a goal error may be the stopped-velocity check's
             text += ', fastest joint at the end %.3f/s' % max(vel)
