@@ -1,7 +1,7 @@
-"""Concave collision meshes collide as their triangles do (physics/concave_meshes.py): the
-concavity check, the cache, .stl/.obj/.dae read alike, and on a U-shaped mesh of our own
-rays and a resting box find the inner surfaces within a millimetre, where pybullet's hull
-would fill the slot."""
+"""Concave collision meshes collide as their triangles do (physics/concave_meshes.py, with
+convex_pieces, mesh_cache, mesh_reading): the concavity check, the cache, .stl/.obj/.dae
+read alike, and on a U-shaped mesh of our own rays and a resting box find the inner surfaces
+within a millimetre, where pybullet's hull would fill the slot."""
 
 import os
 
@@ -12,13 +12,11 @@ import state_sensor_util
 
 from _arm1sim.description.limits import Limits
 from _arm1sim.description.sdf_world import WorldConfig
-from _arm1sim.physics import concave_meshes
-from _arm1sim.physics.concave_meshes import (
-    collision_mesh,
-    concave_collisions,
-    concavity,
-    mesh_triangles,
-)
+from _arm1sim.physics import convex_pieces, mesh_cache
+from _arm1sim.physics.concave_meshes import concave_collisions
+from _arm1sim.physics.convex_pieces import concavity
+from _arm1sim.physics.mesh_cache import collision_mesh
+from _arm1sim.physics.mesh_reading import mesh_triangles
 from _arm1sim.physics.stl import write_binary_stl
 from _arm1sim.sim.simulation import Simulation
 
@@ -110,9 +108,9 @@ def test_a_convex_mesh_is_left_alone_and_a_concave_one_cached(tmp_path, monkeypa
     assert collision_mesh(cube, (1, 1, 1), cache).cached  # the check is not made again
     made = collision_mesh(u, (1, 1, 1), cache)
     assert made.path is not None and not made.cached and os.path.exists(made.path)
-    assert made.concavity > concave_meshes.CONCAVE_DEPTH
+    assert made.concavity > convex_pieces.CONCAVE_DEPTH
     # a second spawn reads the cache: nothing is computed
-    monkeypatch.setattr(concave_meshes, 'concavity', lambda *a: pytest.fail('computed again'))
+    monkeypatch.setattr(mesh_cache, 'concavity', lambda *a: pytest.fail('computed again'))
     again = collision_mesh(u, (1, 1, 1), cache)
     assert again.cached and again.path == made.path
     # another scale is another mesh

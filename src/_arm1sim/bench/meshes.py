@@ -18,7 +18,8 @@ import pybullet as p
 from ..description.limits import Limits
 from ..description.sdf_world import WorldConfig
 from ..paths import repo_root
-from ..physics.concave_meshes import collision_mesh, mesh_triangles
+from ..physics.mesh_cache import collision_mesh
+from ..physics.mesh_reading import mesh_triangles
 from ..sim.simulation import Simulation
 from .probes import median_ms
 
