@@ -1,6 +1,6 @@
 #!/usr/bin/env python
 """Faults, third round, against gazebo.launch gui:=false (the seed's position controllers): the
-requests a client sends that the unit tests (test/unit/test_faults_third_round.py,
+requests a client sends that the unit tests (test/unit/test_non_finite_inputs.py,
 test_controller_manager_rules.py) hold on the ROS-free core, here through the real services
 and topics: a switch naming a running controller in both start and stop, reload with
 force_kill, set_model_state with 1e200 quaternion components, a NaN on a diff drive's cmd_vel,

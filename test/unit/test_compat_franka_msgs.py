@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 
 import pytest
-from test_compat_msgs import ACTION_PARTS, DEFINITIONS, generated_class
+from helpers import ACTION_PARTS, DEFINITIONS, generated_class
 
 UPSTREAM = {
     'franka_gripper/GraspAction': '6f89449359949eaf1f0fef57b7e0db2a',

@@ -7,26 +7,15 @@ Needs the built workspace (tools/ws-run python -m pytest test/unit/test_compat_m
 
 from __future__ import annotations
 
-import importlib
 import os
 import sys
-from typing import Any, Dict, List
+from typing import Dict, List
 
 import pytest
+from helpers import ACTION_PARTS, DEFINITIONS, generated_class
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-DEFINITIONS = os.path.join(REPO_ROOT, 'tools', 'compat_msgs')
 PACKAGES = ('gazebo_msgs', 'control_msgs', 'controller_manager_msgs')
-ACTION_PARTS = (
-    'Goal',
-    'Result',
-    'Feedback',
-    'ActionGoal',
-    'ActionResult',
-    'ActionFeedback',
-    'Action',
-)
-
 # md5s listed in shared/reference (ros-controllers-semantics.md §4, gazebo-ros-api.md §2).
 REFERENCE = {
     'control_msgs/FollowJointTrajectoryAction': 'bc4f9b743838566551c0390c65f1a248',
@@ -126,16 +115,6 @@ UPSTREAM = {
 }
 
 ALL: Dict[str, str] = {**REFERENCE, **UPSTREAM}
-
-
-def generated_class(type_name: str) -> Any:
-    """The python class genpy made for a msg or srv type ('pkg/Name')."""
-    pkg, name = type_name.split('/')
-    for kind in ('msg', 'srv'):
-        module = importlib.import_module('%s.%s' % (pkg, kind))
-        if hasattr(module, name):
-            return getattr(module, name)
-    raise AssertionError('%s: no generated class in %s.msg or %s.srv' % (type_name, pkg, pkg))
 
 
 def types_defined_here() -> List[str]:

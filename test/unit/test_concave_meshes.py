@@ -5,10 +5,10 @@ within a millimetre, where pybullet's hull would fill the slot."""
 
 import os
 
+import helpers
 import numpy as np
 import pybullet as p
 import pytest
-import state_sensor_util
 
 from _arm1sim.description.limits import Limits
 from _arm1sim.description.sdf_world import WorldConfig
@@ -258,7 +258,7 @@ def test_a_part_welded_to_the_world_skips_the_ground_and_still_holds_a_box(tmp_p
     write_binary_stl(path, u_triangles())
     monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'cache'))
     urdf = u_robot(path, 0.0).replace('type="prismatic"', 'type="fixed"')
-    sim = state_sensor_util.world(ground=True)
+    sim = helpers.world(ground=True)
     try:
         model = sim.spawn_urdf('u', urdf)
         cid, body = sim.world.client, model.robot.body

@@ -3,7 +3,7 @@
 import logging
 
 import pytest
-from state_sensor_util import G, box, listen, robot, steps, world
+from helpers import G, box, listen, robot, steps, world
 
 from _arm1sim.physics.contact import ContactSensor
 

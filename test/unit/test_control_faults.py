@@ -6,8 +6,8 @@ import math
 
 import pytest
 from conftest import pump_switch
-from test_controller_manager import rig, states  # noqa: F401 (rig is a fixture)
-from test_joint_position_controller import Rig
+from helpers import PositionControllerRig as Rig
+from helpers import mixed_rig, states  # noqa: F401 (mixed_rig is the rig fixture)
 
 from _arm1sim.control.controller_manager import BEST_EFFORT, STRICT, ControllerManagerError
 

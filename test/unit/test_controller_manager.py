@@ -4,7 +4,10 @@ import threading
 import time
 
 import pytest
-from conftest import JPC, JSC, MIXED_URDF, FakeRobot, FakeRos, pump_switch
+from conftest import JPC, JSC, FakeRos, pump_switch
+from helpers import MIXED_NS as NS
+from helpers import MS as PERIOD_NS
+from helpers import mixed_rig, states  # noqa: F401 (mixed_rig is the rig fixture)
 
 from _arm1sim.control.controller import Controller
 from _arm1sim.control.controller_manager import (
@@ -16,43 +19,6 @@ from _arm1sim.control.controller_manager import (
 from _arm1sim.control.joint_position_controller import JointPositionController
 from _arm1sim.control.registry import CONTROLLER_TYPES, by_type_name
 from _arm1sim.control.switching import SwitchRequest, SwitchTimeout, switch_while_updating
-from _arm1sim.description.urdf_model import parse_urdf
-from _arm1sim.sim.robot_hw_sim import DefaultRobotHWSim
-
-NS = '/mixed_ns'
-PERIOD_NS = 1000000  # a 1 ms physics step
-PARAMS = {
-    'mixed_ns': {
-        'joint_state_controller': {'type': JSC, 'publish_rate': 50},
-        'wheel_controller': {'type': JPC, 'joint': 'wheel_joint', 'pid': {'p': 1.0}},
-        'slider_controller': {'type': JPC, 'joint': 'slider_joint', 'pid': {'p': 1.0}},
-        'flap_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 1.0}},
-        'flap_other_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'p': 5.0}},
-        'no_type_controller': {'joint': 'flap_joint', 'pid': {'p': 1.0}},
-        'bad_type_controller': {
-            'type': 'velocity_controllers/JointPositionController',
-            'joint': 'flap_joint',
-        },
-        'bad_joint_controller': {'type': JPC, 'joint': 'elbow_joint', 'pid': {'p': 1.0}},
-        'passive_controller': {'type': JPC, 'joint': 'passive_joint', 'pid': {'p': 1.0}},
-        'no_p_controller': {'type': JPC, 'joint': 'flap_joint', 'pid': {'i': 1.0, 'd': 0.1}},
-        'no_rate_controller': {'type': JSC},
-    }
-}
-
-
-@pytest.fixture
-def rig():
-    model = parse_urdf(MIXED_URDF)
-    robot = FakeRobot(list(model.joints))
-    hw = DefaultRobotHWSim(model, robot)
-    ros = FakeRos(PARAMS)
-    cm = ControllerManager(hw, ros.node_handle, NS + '/')
-    return cm, hw, robot, ros
-
-
-def states(cm):
-    return {name: state for name, _, state, _ in cm.list_controllers()}
 
 
 # ----------------------------------------------------------------------------- load

@@ -6,7 +6,8 @@ import threading
 
 import pytest
 from conftest import pump_switch
-from test_controller_manager import PERIOD_NS, rig, states  # noqa: F401 (rig is a fixture)
+from helpers import MS as PERIOD_NS
+from helpers import mixed_rig, states  # noqa: F401 (mixed_rig is the rig fixture)
 
 from _arm1sim.control.controller_manager import BEST_EFFORT, STRICT
 

@@ -6,6 +6,7 @@ import logging
 import math
 
 import pytest
+from helpers import GROUND, run, spawn
 from two_wheels import SEPARATION, robot_urdf
 
 from _arm1sim.description.sdf_world import parse_world
@@ -13,35 +14,12 @@ from _arm1sim.physics.diff_drive import DiffDrive
 from _arm1sim.physics.link_motion import point_state
 from _arm1sim.sim.simulation import Simulation
 
-GROUND = """<?xml version="1.0"?>
-<sdf version="1.6"><world name="default">
-  <physics type="ode"><max_step_size>0.001</max_step_size></physics>
-  <model name="ground_plane"><static>true</static><link name="link">
-    <collision name="collision"><geometry><plane><normal>0 0 1</normal><size>100 100</size>
-    </plane></geometry></collision></link></model>
-</world></sdf>"""
-
 
 @pytest.fixture
 def sim():
     s = Simulation(parse_world(GROUND))
     yield s
     s.close()
-
-
-def spawn(sim, **params):
-    model = sim.spawn_urdf('two_wheels', robot_urdf(**params))
-    drives = [s for s in model.sensors if isinstance(s, DiffDrive)]
-    assert len(drives) == 1
-    drive = drives[0]
-    readings = []
-    drive.deliver = lambda stamp, reading: readings.append((stamp, reading))
-    return model, drive, readings
-
-
-def run(sim, seconds):
-    for _ in range(int(round(seconds / 0.001))):
-        sim.step()
 
 
 def base(model):

@@ -5,7 +5,7 @@ import logging
 import statistics
 
 import pytest
-from state_sensor_util import G, inertial, listen, robot, steps, world
+from helpers import G, inertial, listen, robot, steps, world
 
 from _arm1sim.physics.force_torque import ForceTorque
 

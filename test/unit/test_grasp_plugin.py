@@ -115,7 +115,7 @@ GRASP = """<gazebo><plugin name="gazebo_grasp_fix" filename="libgazebo_grasp_fix
 
 
 def plugin_spec(params):
-    from test_position_carry import GRIPPER
+    from helpers import GRIPPER
 
     model = parse_urdf(GRIPPER.replace('</robot>', GRASP % params + '</robot>'))
     (spec,) = [s for s in model_plugins(model) if s.filename == 'libgazebo_grasp_fix.so']
@@ -170,14 +170,14 @@ def run(sim, seconds):
 def weak_gripper(params=''):
     """test_position_carry's gripper with fingers of 2 N: friction (4 N at most, with mu 1)
     cannot lift the 1 kg box."""
-    from test_position_carry import GRIPPER
+    from helpers import GRIPPER
 
     weak = GRIPPER.replace('effort="10"', 'effort="2"')
     return weak.replace('</robot>', GRASP % params + '</robot>')
 
 
 def pick(sim, urdf):
-    from test_position_carry import BOX, CONTROLLERS, LIFT_TOP
+    from helpers import BOX, CONTROLLERS, LIFT_TOP
 
     ros = FakeRos({'carrier': CONTROLLERS})
     model = sim.spawn_urdf(
@@ -208,7 +208,7 @@ def pick(sim, urdf):
 
 
 def test_without_the_plugin_weak_fingers_cannot_lift_the_heavy_box(sim):
-    from test_position_carry import GRIPPER
+    from helpers import GRIPPER
 
     weak = GRIPPER.replace('effort="10"', 'effort="2"')
     _, _, _, _, risen = pick(sim, weak)
@@ -216,7 +216,7 @@ def test_without_the_plugin_weak_fingers_cannot_lift_the_heavy_box(sim):
 
 
 def test_the_plugin_attaches_the_gripped_box_to_the_palm_and_lets_go_when_opened(sim):
-    from test_position_carry import LIFT_TOP
+    from helpers import LIFT_TOP
 
     ros, model, box, events, risen = pick(sim, weak_gripper())
     assert risen == pytest.approx(LIFT_TOP, abs=2e-3)

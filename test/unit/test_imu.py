@@ -6,7 +6,7 @@ import math
 import statistics
 
 import pytest
-from state_sensor_util import G, box, listen, robot, steps, world
+from helpers import G, box, listen, robot, steps, world
 
 from _arm1sim.physics.imu import ImuModelPlugin, ImuSensor
 

@@ -4,6 +4,7 @@ import math
 
 import pytest
 from conftest import JPC, MIXED_URDF, FakeRobot, FakeRos
+from helpers import PositionControllerRig as Rig
 
 from _arm1sim.control.controller import ControllerError
 from _arm1sim.control.joint_position_controller import JointPositionController
@@ -27,42 +28,6 @@ STATE_FIELDS = {
     'i_clamp',
     'antiwindup',
 }
-
-
-class Rig:
-    """One JointPositionController on a fake robot with the mixed joints."""
-
-    def __init__(self, joint, pid):
-        self.robot = FakeRobot(list(parse_urdf(MIXED_URDF).joints))
-        self.hw = DefaultRobotHWSim(parse_urdf(MIXED_URDF), self.robot)
-        self.ros = FakeRos({'mixed_ns': {'c': {'type': JPC, 'joint': joint, 'pid': pid}}})
-        self.c = JointPositionController()
-        self.c.name = 'c'
-        self.c.init(self.hw, self.ros.node_handle(NS), self.ros.node_handle(NS + '/c'))
-        self.joint = joint
-        self.t = 0
-
-    def at(self, position, velocity=0.0):
-        self.robot.set(self.joint, position, velocity)
-        self.hw.read()
-
-    def start(self):
-        self.c.start_request(self.t)
-
-    def stop(self):
-        self.c.stop_request(self.t)
-
-    def update(self, n=1):
-        for _ in range(n):
-            self.c.update(self.t, DT_NS)
-            self.t += DT_NS
-        return self.hw.handles[self.joint].command
-
-    def command(self, value):
-        return self.ros.publish(NS + '/c/command', value)
-
-    def states(self):
-        return self.ros.messages(NS + '/c/state')
 
 
 def test_init_requires_joint_parameter():

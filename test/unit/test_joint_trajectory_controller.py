@@ -6,13 +6,13 @@ import math
 
 import pytest
 from conftest import FakeRos
+from helpers import FakeHW, params
+from helpers import TrajectoryRig as Rig
 
 from _arm1sim.control.controller import ControllerError
 from _arm1sim.control.hardware_interface import (
-    EFFORT_JOINT_INTERFACE,
     POSITION_JOINT_INTERFACE,
     VELOCITY_JOINT_INTERFACE,
-    JointHandle,
 )
 from _arm1sim.control.joint_trajectory_controller import (
     GOAL_TOLERANCE_VIOLATED,
@@ -31,79 +31,6 @@ NS = '/arm'
 DT_NS = 1000000  # 1 kHz
 S = 1000000000
 JTC = 'effort_controllers/JointTrajectoryController'
-
-
-class FakeHW:
-    def __init__(self, joints, interface=EFFORT_JOINT_INTERFACE):
-        self.handles = {n: JointHandle(n, t, interface=interface) for n, t in joints.items()}
-
-    def joint_names(self):
-        return sorted(self.handles)
-
-    def get_handle(self, name, interface, controller_ns):
-        if name not in self.handles or self.handles[name].interface != interface:
-            raise ControllerError('no joint %s with %s for %s' % (name, interface, controller_ns))
-        return self.handles[name]
-
-
-def params(**extra):
-    p = {
-        'type': JTC,
-        'joints': ['j1', 'j2'],
-        'gains': {'j1': {'p': 100.0, 'd': 10.0}, 'j2': {'p': 50.0, 'd': 5.0}},
-        # Linear segments end at speed: a perfectly following joint needs one update to
-        # stop, and upstream's goal_time 0 would abort at once on stopped_velocity_tolerance.
-        'constraints': {'goal_time': 0.1},
-    }
-    p.update(extra)
-    return p
-
-
-class Rig:
-    """A JTC over j1 (revolute) and j2 (continuous). ``follow`` makes the joints track the
-    desired state exactly, so the goal logic is seen apart from the dynamics."""
-
-    def __init__(self, **extra):
-        self.hw = FakeHW({'j1': 'revolute', 'j2': 'continuous'})
-        self.ros = FakeRos({'arm': {'jtc': params(**extra)}})
-        self.c = JointTrajectoryController()
-        self.c.name = 'jtc'
-        self.c.init_request(self.hw, self.ros.node_handle(NS), self.ros.node_handle(NS + '/jtc'))
-        self.server = self.ros.action_servers[NS + '/jtc/follow_joint_trajectory']
-        self.t = 5 * S  # sim time when started
-        self.follow = True
-        self.stuck = set()
-
-    def joint(self, name):
-        return self.hw.handles[name]
-
-    def start(self):
-        self.c.start_request(self.t)
-
-    def step(self, n=1):
-        for _ in range(n):
-            self.t += DT_NS
-            self.c.update(self.t, DT_NS)
-            if self.follow:
-                for i, name in enumerate(self.c.joint_names):
-                    if name in self.stuck:
-                        continue
-                    _, (p, v, _) = sample(self.c.trajectory[i], self.c.uptime)
-                    self.joint(name).position, self.joint(name).velocity = p, v
-
-    def desired(self, i=0):
-        return sample(self.c.trajectory[i], self.c.uptime)[1]
-
-    def goal(self, points, names=('j1', 'j2'), stamp=0, **goal):
-        traj = dict(
-            stamp=stamp,
-            joint_names=list(names),
-            points=[
-                dict(positions=list(p), time_from_start=int(t * S), **kw)
-                for t, p, kw in ((pt[0], pt[1], pt[2] if len(pt) > 2 else {}) for pt in points)
-            ],
-        )
-        return self.server.send_goal(dict(trajectory=traj, **goal))
 
 
 @pytest.fixture

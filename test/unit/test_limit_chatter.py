@@ -6,7 +6,7 @@ merely moves fast."""
 import logging
 
 import pytest
-from test_trajectory_chatter import JOINTS, largest_speed_at_the_end, trajectory_params
+from helpers import JOINTS, largest_speed_at_the_end, trajectory_params
 
 from _arm1sim.sim.limit_chatter import STEPS, LimitChatterWatch
 

@@ -7,7 +7,7 @@ import statistics
 
 import pybullet as p
 import pytest
-from state_sensor_util import G, box, inertial, listen, robot, steps, world
+from helpers import G, box, inertial, listen, robot, steps, world
 
 from _arm1sim.physics.p3d import P3d
 

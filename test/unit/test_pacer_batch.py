@@ -5,34 +5,9 @@ import threading
 import time
 
 import pytest
+from helpers import FakeClock
 
 from _arm1sim.sim.pacer import Pacer
-
-
-class FakeClock:
-    def __init__(self, t=100.0):
-        self.t = t
-        self.sleeps = []  # (kind, seconds)
-        self.wake_after = None  # a nap is cut short after this many seconds, once
-
-    def __call__(self):
-        return self.t
-
-    def sleep(self, dt):
-        assert dt > 0
-        self.sleeps.append(('sleep', dt))
-        self.t += dt
-
-    def nap(self, dt):
-        assert dt > 0
-        if self.wake_after is not None and self.wake_after < dt:
-            self.sleeps.append(('woken', self.wake_after))
-            self.t += self.wake_after
-            self.wake_after = None
-            return True
-        self.sleeps.append(('nap', dt))
-        self.t += dt
-        return False
 
 
 def test_two_steps_per_wake_up_keep_the_schedule_with_half_the_sleeps():

@@ -6,7 +6,7 @@ import threading
 import time
 
 import pytest
-from test_pacer_batch import FakeClock
+from helpers import FakeClock
 
 from _arm1sim.sim.pacer import Pacer
 

@@ -4,56 +4,13 @@ between two position-driven fingers by friction alone rises with a position-driv
 Real pybullet, the gripper driven through DefaultRobotHWSim by position controllers."""
 
 import pytest
-from conftest import WORLD_FILE, FakeRos, box_link, control_plugin, transmission
+from conftest import WORLD_FILE, FakeRos
+from helpers import BOX, CONTROLLERS, GRIPPER, LIFT_TOP
 
 from _arm1sim.control.controller_manager import ControllerManager
 from _arm1sim.control.switching import switch_while_updating
 from _arm1sim.description.sdf_world import read_world
 from _arm1sim.sim.simulation import Simulation
-
-POS = 'hardware_interface/PositionJointInterface'
-LIFT_TOP = 0.12  # the lift's travel, m
-
-
-def prismatic(name, parent, xyz, axis, lower, upper, effort):
-    return """
-  <joint name="%s" type="prismatic"><parent link="%s"/><child link="%s_link"/>
-    <origin xyz="%s"/><axis xyz="%s"/>
-    <limit lower="%g" upper="%g" effort="%g" velocity="0.5"/></joint>""" % (
-        name,
-        parent,
-        name,
-        xyz,
-        axis,
-        lower,
-        upper,
-        effort,
-    )
-
-
-# A palm on a vertical lift, two fingers 8 cm apart sliding toward each other (closed at
-# 0.03 each: inner faces 2 cm apart), 10 N each; the 4 cm box between them on the ground.
-GRIPPER = (
-    '<robot name="carrier"><link name="world"/>'
-    + box_link('base', '0.05 0.05 0.02', 1.0)
-    + box_link('lift_link', '0.06 0.12 0.02', 0.3)
-    + box_link('left_link', '0.04 0.02 0.08', 0.05, xyz='0 0 -0.04')
-    + box_link('right_link', '0.04 0.02 0.08', 0.05, xyz='0 0 -0.04')
-    + '<joint name="fix" type="fixed"><parent link="world"/><child link="base"/>'
-    '<origin xyz="0.5 0 0.5"/></joint>'
-    + prismatic('lift', 'base', '0 0 -0.38', '0 0 1', 0, LIFT_TOP, 50)
-    + prismatic('left', 'lift_link', '0 0.05 -0.01', '0 -1 0', 0, 0.03, 10)
-    + prismatic('right', 'lift_link', '0 -0.05 -0.01', '0 1 0', 0, 0.03, 10)
-    + ''.join(transmission(j, POS) for j in ('lift', 'left', 'right'))
-    + control_plugin('/carrier')
-    + '</robot>'
-)
-BOX = '<robot name="box">%s</robot>' % box_link('box', '0.04 0.04 0.04', 0.05)
-
-CONTROLLERS = {
-    '%s_controller' % j: {'type': 'position_controllers/JointPositionController', 'joint': j}
-    for j in ('lift', 'left', 'right')
-}
 
 
 @pytest.fixture

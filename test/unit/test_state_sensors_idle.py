@@ -1,7 +1,7 @@
 """All five state-sensor plugins on one robot: none measures while nobody listens, each
 does at its own rate once someone does, and delete releases them."""
 
-from state_sensor_util import box, inertial, robot, steps, world
+from helpers import box, inertial, robot, steps, world
 
 GAZEBO = """
 <gazebo reference="base">

@@ -3,7 +3,7 @@ its frame (as Gazebo moves the sensor to the parent with the joint's transform).
 
 import math
 
-from state_sensor_util import G, box, listen, robot, steps, world
+from helpers import G, box, listen, robot, steps, world
 
 BODY = (
     '<link name="world"/><joint name="bolt" type="fixed"><parent link="world"/>'

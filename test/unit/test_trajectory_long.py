@@ -4,7 +4,7 @@ segments are built without the lock the update needs."""
 
 import time
 
-from test_joint_trajectory_controller import Rig
+from helpers import TrajectoryRig as Rig
 
 from _arm1sim.control import joint_trajectory_controller as jtc_module
 from _arm1sim.control.trajectory import Segment, State, find_segment

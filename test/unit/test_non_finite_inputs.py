@@ -1,4 +1,4 @@
-"""Faults, third round (ROS-free parts): non-finite values never reach physics (huge
+"""Non-finite inputs (ROS-free parts): non-finite values never reach physics (huge
 quaternions, NaN cmd_vel) and a body pybullet cannot report on is refused whole."""
 
 import math
@@ -7,7 +7,7 @@ import os
 import pybullet as p
 import pytest
 from conftest import box_link
-from test_diff_drive import GROUND, run, spawn
+from helpers import GROUND, run, spawn
 from urdf_snippets import joint, link
 
 from _arm1sim.description.pose_math import normalized
