@@ -11,7 +11,7 @@ from PIL import Image
 
 from _arm1sim.session.browser import Browser
 
-# where the page's camera is (ros/world/web_view.py: INITIAL_*)
+# where the page's camera is (ros/web/web_view.py: INITIAL_*)
 CAMERA = np.array((0.3, -0.3, 0.25))
 LOOK_AT = np.array((0.0, 0.0, 0.05))
 FOV = math.radians(60.0)

@@ -1,4 +1,4 @@
-"""What the browser view reads of the world (ros/world/web_snapshot.py), in a pybullet world."""
+"""What the browser view reads of the world (ros/web/web_snapshot.py), in a pybullet world."""
 
 from types import SimpleNamespace
 
@@ -7,7 +7,7 @@ from conftest import WORLD_FILE
 
 from _arm1sim.control.controller_manager import ControllerManager
 from _arm1sim.description.sdf_world import read_world
-from _arm1sim.ros.world.web_snapshot import WorldSnapshots
+from _arm1sim.ros.web.web_snapshot import WorldSnapshots
 from _arm1sim.sim.simulation import Simulation
 
 

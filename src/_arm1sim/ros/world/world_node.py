@@ -208,7 +208,7 @@ def start_web_view(node: WorldNode, host: str, port: int) -> None:
     """The browser view (imported only when asked: viser is large); its address is printed,
     logged and left in ``~web_url``."""
     try:
-        from .web_view import WebView
+        from ..web.web_view import WebView
     except ImportError as exc:  # viser missing: the world runs on without its page
         rospy.logerr('web view: cannot start (%s); run make setup', exc)
         return

@@ -24,7 +24,8 @@ from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 from ...sim import model_state as ms
 from ...sim.simulation import Simulation
 from ..plugins.camera_plugin import GazeboRosCamera
-from .sim_thread import SimThreadCalls
+from ..world.sim_thread import SimThreadCalls
+from ..world.world_loop import WorldLoop
 from .web_snapshot import (
     TRAJECTORY,
     ModelView,
@@ -35,7 +36,6 @@ from .web_snapshot import (
     ros_names,
     shown_pose,
 )
-from .world_loop import WorldLoop
 
 FRAME_PERIOD = 1 / 32.0  # s of wall time between two scene updates (the view asks >= 30 fps)
 PANEL_PERIOD = 0.2  # s: status text, joint readouts, plots and camera images

@@ -20,8 +20,8 @@ import pybullet as p
 from ...control.controller import Controller
 from ...physics.renderers import _link_frame
 from ...sim.simulation import Model, Simulation
-from .sim_thread import SimThreadCalls
-from .world_loop import WorldLoop
+from ..world.sim_thread import SimThreadCalls
+from ..world.world_loop import WorldLoop
 
 Pose = Tuple[Tuple[float, float, float], Tuple[float, float, float, float]]  # xyz, xyzw
 
