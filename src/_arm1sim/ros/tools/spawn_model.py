@@ -128,7 +128,7 @@ def main(argv=None):
     if not resp.success:
         rospy.logfatal('spawn_model: %s', resp.status_message)
         return 1
-    rospy.loginfo(resp.status_message)
+    rospy.loginfo('Spawn status: %s', resp.status_message)
     if args.J:
         try:
             values = [float(v) for _, v in args.J]

@@ -95,7 +95,9 @@ class GazeboRosApi:
             msg += ' with controller manager in %s' % model.namespace
         for c in model.cameras:
             msg += '; camera %s on %s' % (c.sensor.name, c.sensor.image_topic)
-        rospy.loginfo(msg)
+        # The caller logs it (spawn_model: "Spawn status: ..."), as upstream's world does not;
+        # what was not built is the world's to warn about.
+        (rospy.logwarn if dropped else rospy.logdebug)(msg)
         return True, msg
 
     def _in_reference_frame(
