@@ -60,6 +60,11 @@ PACKAGES = {
             'controller_manager': '_arm1sim.ros.tools.controller_manager_cli',
         },
     ),
+    'moveit_ros_move_group': (
+        "Stand-in for MoveIt's move_group: the planning and execution of a *_moveit_config "
+        "on arm1's planning core (OMPL from PyPI).",
+        {'move_group': '_arm1sim.ros.moveit.move_group'},
+    ),
     'xacro': (
         'Stand-in for ROS 1 xacro: PyPI xacro with $(find pkg) resolved through the ROS '
         'package path.',

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Dict, List
+from typing import Dict, List, Sequence
 
 import pytest
 from helpers import ACTION_PARTS, DEFINITIONS, generated_class
@@ -117,10 +117,10 @@ UPSTREAM = {
 ALL: Dict[str, str] = {**REFERENCE, **UPSTREAM}
 
 
-def types_defined_here() -> List[str]:
+def types_defined_here(packages: Sequence[str] = PACKAGES) -> List[str]:
     """Every type the definition files yield, actions expanded as genaction does."""
     names = []
-    for pkg in PACKAGES:
+    for pkg in packages:
         for kind in ('msg', 'srv', 'action'):
             folder = os.path.join(DEFINITIONS, pkg, kind)
             for fname in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:

@@ -8,24 +8,11 @@ Needs the built workspace (tools/ws-run python -m pytest test/unit/test_moveit_m
 
 from __future__ import annotations
 
-import importlib
-import os
-from typing import Any, List
-
 import pytest
+from helpers import generated_class
+from test_compat_msgs import types_defined_here
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-DEFINITIONS = os.path.join(REPO_ROOT, 'tools', 'compat_msgs')
 PACKAGES = ('moveit_msgs', 'octomap_msgs', 'object_recognition_msgs')
-ACTION_PARTS = (
-    'Goal',
-    'Result',
-    'Feedback',
-    'ActionGoal',
-    'ActionResult',
-    'ActionFeedback',
-    'Action',
-)
 
 # Computed with genmsg (Debian's python3-genmsg, genaction for actions) from upstream's own
 # files, comments and all: moveit_msgs 0.11.4 (noetic), octomap_msgs 0.3.5 (melodic-devel,
@@ -159,29 +146,6 @@ UPSTREAM = {
 }
 
 
-def generated_class(type_name: str) -> Any:
-    pkg, name = type_name.split('/')
-    for kind in ('msg', 'srv'):
-        module = importlib.import_module('%s.%s' % (pkg, kind))
-        if hasattr(module, name):
-            return getattr(module, name)
-    raise AssertionError('%s: no generated class in %s.msg or %s.srv' % (type_name, pkg, pkg))
-
-
-def types_defined_here() -> List[str]:
-    names = []
-    for pkg in PACKAGES:
-        for kind in ('msg', 'srv', 'action'):
-            folder = os.path.join(DEFINITIONS, pkg, kind)
-            for fname in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
-                base = fname.rsplit('.', 1)[0]
-                if kind == 'action':
-                    names += ['%s/%s%s' % (pkg, base, part) for part in ACTION_PARTS]
-                else:
-                    names.append('%s/%s' % (pkg, base))
-    return sorted(names)
-
-
 @pytest.mark.parametrize('type_name', sorted(UPSTREAM))
 def test_generated_type_has_upstream_md5sum(type_name: str) -> None:
     cls = generated_class(type_name)
@@ -190,7 +154,7 @@ def test_generated_type_has_upstream_md5sum(type_name: str) -> None:
 
 
 def test_every_definition_file_is_checked_and_none_is_missing() -> None:
-    assert types_defined_here() == sorted(UPSTREAM)
+    assert types_defined_here(PACKAGES) == sorted(UPSTREAM)
 
 
 def test_classes_clients_use_import_with_upstream_constants() -> None:

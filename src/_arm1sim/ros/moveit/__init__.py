@@ -1,0 +1,1 @@
+"""MoveIt's move_group stand-in: the ROS node around the planning core (planning/)."""
