@@ -67,6 +67,8 @@ PLAN = [
     ('web_view', 'web_view', ['--seconds', '20'], 3, None, 0),
     ('big_goal', 'big_goal', ['--count', '100000'], 3, None, 0),
     ('big_description', 'big_description', [], 3, None, 0),
+    ('moveit_planning', 'moveit_planning', ['--count', '20'], 3, None, 0),
+    ('moveit_idle', 'moveit_idle', ['--seconds', '20'], 3, None, 0),
 ]
 SCALING_ARMS = (2, 4, 8, 16)
 NEEDS_MASTER = {'standin', 'latency'}  # they run the world in-process against a shared master

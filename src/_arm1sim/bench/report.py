@@ -280,6 +280,64 @@ ROWS += [
 ]
 
 
+# the move_group stand-in (bench/moveit.py): the MoveIt tutorial's goals planned on the ROS-free
+# core (toy Panda; wall seconds of one process, each median and p95 over 20 plans), and the CPU
+# of an idle move_group node receiving joint_states at 100 Hz
+ROWS += [
+    (
+        'move_group: tutorial joint goal, plan (s)',
+        'moveit_planning',
+        'joint_goal_median_s',
+        '',
+        None,
+        '%.3f',
+    ),
+    ('  p95 (s)', 'moveit_planning', 'joint_goal_p95_s', '', None, '%.3f'),
+    (
+        '  pose goal (IK + plan), median (s)',
+        'moveit_planning',
+        'pose_goal_median_s',
+        '',
+        None,
+        '%.3f',
+    ),
+    ('  pose goal, p95 (s)', 'moveit_planning', 'pose_goal_p95_s', '', None, '%.3f'),
+    (
+        '  Cartesian path (3 waypoints, 1 cm steps), median (s)',
+        'moveit_planning',
+        'cartesian_median_s',
+        '',
+        None,
+        '%.3f',
+    ),
+    ('  Cartesian path, p95 (s)', 'moveit_planning', 'cartesian_p95_s', '', None, '%.3f'),
+    (
+        '  joint goal among 20 boxes, median (s)',
+        'moveit_planning',
+        'cluttered_joint_goal_median_s',
+        '',
+        None,
+        '%.3f',
+    ),
+    (
+        '  joint goal among 20 boxes, p95 (s)',
+        'moveit_planning',
+        'cluttered_joint_goal_p95_s',
+        '',
+        None,
+        '%.3f',
+    ),
+    ('  plans that failed', 'moveit_planning', 'failures', '0', lambda v: v == 0, '%d'),
+    (
+        'move_group idle, joint_states at 100 Hz (fraction of a core)',
+        'moveit_idle',
+        'cpu_core_fraction',
+        '≤ 0.05',
+        lambda v: v <= 0.05,
+        '%.3f',
+    ),
+]
+
 Results = Dict[str, Any]  # results.json: machine, quick, figures, raw
 
 

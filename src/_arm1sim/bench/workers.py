@@ -19,6 +19,7 @@ from .idle import idle_world
 from .latency import latency, publisher
 from .launched import realtime, seed_goal, startup
 from .meshes import concave_mesh
+from .moveit import idle_move_group, planning_times
 from .render import render
 from .sensors import laser_scan
 from .speed import standin
@@ -42,6 +43,8 @@ KINDS: Dict[str, Callable[..., Any]] = {
     'big_description': big_description_bench,
     'big_description_client': big_description_client,
     'concave_mesh': concave_mesh,
+    'moveit_planning': planning_times,
+    'moveit_idle': idle_move_group,
 }
 
 
@@ -61,7 +64,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     kwargs = {k: v for k, v in vars(args).items() if k != 'kind' and v is not None}
     result = KINDS[args.kind](**kwargs)
     if result is not None:
-        print(json.dumps(result))
+        # on a line of its own: C libraries (pybullet's URDF warnings) print without newlines
+        print('\n' + json.dumps(result))
     return 0
 
 

@@ -358,6 +358,17 @@ class PlanningPipeline:
         if code != SUCCESS:
             return MotionResult(code, planning_time=time.monotonic() - t0, start=start)
         group_cfg = self.ompl.groups.get(req.group)
+        config = self.ompl.planner_for(req.group, req.planner_id)
+        if req.planner_id and (
+            config is None
+            or req.planner_id not in (config.name, '%s[%s]' % (req.group, config.name))
+        ):
+            log.warning(
+                "Cannot find planning configuration for group '%s' using planner '%s'. "
+                'Will use defaults instead.',
+                req.group,
+                req.planner_id,
+            )
         planner = JointSpacePlanner(
             self.robot, joints, lambda v: self.state_ok(v, req.path_constraints)
         )
@@ -365,7 +376,7 @@ class PlanningPipeline:
         result = planner.plan(
             start,
             goals,
-            self.ompl.planner_for(req.group, req.planner_id),
+            config,
             allowed_time=remaining,
             longest_valid_segment_fraction=group_cfg.longest_valid_segment_fraction
             if group_cfg

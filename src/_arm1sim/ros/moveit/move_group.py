@@ -38,6 +38,7 @@ from moveit_msgs.msg import (
     PlanningScene,
     PlanningSceneComponents,
     PlanningSceneWorld,
+    RobotState,
 )
 from moveit_msgs.srv import (
     ApplyPlanningScene,
@@ -118,8 +119,9 @@ class MoveGroup:
         self.world = CollisionWorld(self.robot)
         private = _param('~', {}) or {}
         self.private = private
-        self._say_unapplied(private)
-        self.ompl = cfg.ompl_config(private, list(srdf.groups))
+        pipeline = self._pipeline_params(private)
+        self._say_unapplied(pipeline)
+        self.ompl = cfg.ompl_config(pipeline, list(srdf.groups))
         self.kinematics = cfg.kinematics_config(_param('robot_description_kinematics', {}))
         self.pipeline = PlanningPipeline(
             self.robot,
@@ -128,10 +130,10 @@ class MoveGroup:
             self.kinematics,
             PipelineSettings(
                 start_state_max_bounds_error=float(
-                    private.get('start_state_max_bounds_error', 0.05)
+                    pipeline.get('start_state_max_bounds_error', 0.05)
                 ),
-                jiggle_fraction=float(private.get('jiggle_fraction', 0.05)),
-                max_sampling_attempts=int(private.get('max_sampling_attempts', 100)),
+                jiggle_fraction=float(pipeline.get('jiggle_fraction', 0.05)),
+                max_sampling_attempts=int(pipeline.get('max_sampling_attempts', 100)),
             ),
         )
         self.frame = self.robot.model_frame
@@ -198,6 +200,28 @@ class MoveGroup:
         )
 
     # --- parameters ------------------------------------------------------------------------
+
+    @staticmethod
+    def _pipeline_params(private: Dict[str, Any]) -> Dict[str, Any]:
+        """The planning pipeline's parameters: MoveIt 1.1's planning_pipelines/<name>/
+        (default_planning_pipeline, else ompl), or those of older configurations, straight
+        under the node's namespace."""
+        pipelines = private.get('planning_pipelines')
+        if not isinstance(pipelines, dict) or not pipelines:
+            return private
+        name = str(private.get('default_planning_pipeline') or 'ompl')
+        chosen = pipelines.get(name)
+        if (
+            not isinstance(chosen, dict)
+            or chosen.get('planning_plugin', PLANNING_PLUGIN) != PLANNING_PLUGIN
+        ):
+            if name != 'ompl':
+                rospy.logwarn(
+                    "default_planning_pipeline '%s': planning with the 'ompl' pipeline instead",
+                    name,
+                )
+            chosen = pipelines.get('ompl')
+        return dict(chosen) if isinstance(chosen, dict) else private
 
     def _say_unapplied(self, private: Dict[str, Any]) -> None:
         plugin = private.get('planning_plugin', PLANNING_PLUGIN)
@@ -419,10 +443,12 @@ class MoveGroup:
         with self.lock:
             if not scene.is_diff:
                 self.world.clear()
-            for co in scene.world.collision_objects:
-                self.apply_collision_object(co)
+            # the robot state's attached objects first, then the world, as MoveIt's
+            # PlanningScene::setPlanningSceneDiffMsg
             for aco in scene.robot_state.attached_collision_objects:
                 self.apply_attached(aco)
+            for co in scene.world.collision_objects:
+                self.apply_collision_object(co)
             acm = scene.allowed_collision_matrix
             for a, entry in zip(acm.entry_names, acm.entry_values):
                 for b, allowed in zip(acm.entry_names, entry.enabled):
@@ -461,6 +487,10 @@ class MoveGroup:
     # --- planning ---------------------------------------------------------------------------
 
     def motion_request(self, req) -> MotionRequest:
+        if req.pipeline_id and req.pipeline_id != 'ompl':
+            rospy.logwarn_once(
+                "pipeline_id '%s': planning with the 'ompl' pipeline instead" % req.pipeline_id
+            )
         start = self.state_from_msg(req.start_state)
         return MotionRequest(
             group=req.group_name,
@@ -534,7 +564,16 @@ class MoveGroup:
             and goal.planning_options.planning_scene_diff.world.collision_objects
         ):
             rospy.logwarn_once('move_group goal: a non-diff planning_scene_diff is not applied')
-        code, traj, start, t = self.plan(goal.request)
+        request = goal.request
+        if not goal.planning_options.plan_only and (
+            request.start_state.joint_state.name or request.start_state.attached_collision_objects
+        ):
+            rospy.logwarn(
+                'Execution of motions should always start at the robot\'s current state. '
+                'Ignoring the state supplied as start state in the motion planning request'
+            )
+            request.start_state = RobotState(is_diff=True)
+        code, traj, start, t = self.plan(request)
         result.error_code.val = code
         result.planning_time = t
         if start:
