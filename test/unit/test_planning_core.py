@@ -119,6 +119,20 @@ def test_bad_srdf_names_the_culprit(text, culprit):
         parse_srdf(text)
 
 
+def test_default_disabled_links_and_enabled_pairs_as_srdfdom_reads_them():
+    # panda_moveit_config's self-collision capsules: a link colliding with nothing by
+    # default, but the pairs <enable_collisions> names; an explicit pair wins over defaults
+    srdf = parse_srdf(
+        '<robot name="r"><disable_default_collisions link="a_sc"/>'
+        '<enable_collisions link1="b_sc" link2="a_sc"/>'
+        '<disable_collisions link1="x" link2="y"/></robot>'
+    )
+    assert srdf.collision_disabled('a_sc', 'world_box')
+    assert not srdf.collision_disabled('a_sc', 'b_sc')
+    assert srdf.collision_disabled('y', 'x')
+    assert not srdf.collision_disabled('x', 'z')
+
+
 def test_joint_limits_yaml_overrides_the_urdf(robot):
     b = robot.bounds['toy_joint2']
     assert (b.max_velocity, b.max_acceleration) == (2.175, 1.875)

@@ -54,9 +54,22 @@ class Srdf:
     virtual_joints: List[VirtualJoint] = field(default_factory=list)
     passive_joints: List[str] = field(default_factory=list)
     disabled_collisions: Set[Tuple[str, str]] = field(default_factory=set)  # sorted pairs
+    # <disable_default_collisions link>: the link collides with nothing by default ...
+    default_disabled: Set[str] = field(default_factory=set)
+    # ... but the pairs of <enable_collisions> (srdfdom 0.6), which win over both
+    enabled_collisions: Set[Tuple[str, str]] = field(default_factory=set)
 
     def collision_disabled(self, a: str, b: str) -> bool:
-        return (min(a, b), max(a, b)) in self.disabled_collisions
+        """Whether MoveIt's allowed-collision matrix from this SRDF allows the pair: an
+        entry (enabled, else disabled) over the links' default entries."""
+        pair = (min(a, b), max(a, b))
+        if pair in self.enabled_collisions:
+            return False
+        return (
+            pair in self.disabled_collisions
+            or a in self.default_disabled
+            or b in self.default_disabled
+        )
 
 
 def _required(element: ET.Element, attribute: str, where: str) -> str:
@@ -121,10 +134,15 @@ def parse_srdf(text: str) -> Srdf:
             )
         )
     srdf.passive_joints = [_required(p, 'name', 'SRDF') for p in root.findall('passive_joint')]
-    for tag in ('disable_collisions', 'disable_default_collisions'):
-        for d in root.findall(tag):
-            a, b = _required(d, 'link1', 'SRDF'), _required(d, 'link2', 'SRDF')
-            srdf.disabled_collisions.add((min(a, b), max(a, b)))
+    for d in root.findall('disable_collisions'):
+        a, b = _required(d, 'link1', 'SRDF'), _required(d, 'link2', 'SRDF')
+        srdf.disabled_collisions.add((min(a, b), max(a, b)))
+    for e in root.findall('enable_collisions'):
+        a, b = _required(e, 'link1', 'SRDF'), _required(e, 'link2', 'SRDF')
+        srdf.enabled_collisions.add((min(a, b), max(a, b)))
+    srdf.default_disabled = {
+        _required(d, 'link', 'SRDF') for d in root.findall('disable_default_collisions')
+    }
     for group in srdf.groups.values():
         for sub in group.subgroups:
             if sub not in srdf.groups:

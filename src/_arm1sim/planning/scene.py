@@ -88,9 +88,9 @@ class CollisionWorld:
         self.attached: Dict[str, SceneObject] = {}
         self.allowed: Set[Tuple[str, str]] = set()  # extra ACM entries (names: links, objects)
         c, body = self.client, robot.body
-        for a, b in robot.srdf.disabled_collisions:
-            ia, ib = robot.link_index.get(a), robot.link_index.get(b)
-            if ia is not None and ib is not None:
+        for a, b in itertools.combinations(robot.link_index, 2):
+            if robot.srdf.collision_disabled(a, b):
+                ia, ib = robot.link_index[a], robot.link_index[b]
                 p.setCollisionFilterPair(body, body, ia, ib, 0, physicsClientId=c)
         self._body_owner: Dict[int, str] = {}
 
@@ -217,8 +217,10 @@ class CollisionWorld:
             na, nb = self._name(a, la), self._name(b, lb)
             if na is None or nb is None or na == nb:
                 continue
-            if (min(na, nb), max(na, nb)) in self.allowed:
-                continue
+            if (min(na, nb), max(na, nb)) in self.allowed or self.robot.srdf.collision_disabled(
+                na, nb
+            ):
+                continue  # the scene's or the SRDF's (a link colliding with nothing by default)
             out.append((na, nb, -depth))
         return out
 
