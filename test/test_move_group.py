@@ -306,6 +306,27 @@ class MoveGroupTest(WorldTestCase):
         self.assertTrue(self.execute.wait_for_result(rospy.Duration(30)))
         self.assertEqual(self.execute.get_result().error_code.val, MoveItErrorCodes.CONTROL_FAILED)
 
+    def test_8_bad_requests_answered_and_the_node_keeps_serving(self):
+        ik = GetPositionIKRequest()
+        ik.ik_request.group_name = 'toy_arm'
+        ik.ik_request.ik_link_name = 'no_such_link'
+        ik.ik_request.pose_stamped.pose.orientation.w = 1.0
+        self.assertEqual(self.ik(ik).error_code.val, MoveItErrorCodes.INVALID_LINK_NAME)
+        ik.ik_request.group_name = 'no_such_group'
+        self.assertEqual(self.ik(ik).error_code.val, MoveItErrorCodes.INVALID_GROUP_NAME)
+        bad = CollisionObject(id='bad', operation=CollisionObject.ADD)
+        bad.primitives.append(SolidPrimitive(type=99, dimensions=[1.0]))
+        bad.primitive_poses.append(Pose())
+        pub = rospy.Publisher('collision_object', CollisionObject, queue_size=10, latch=True)
+        pub.publish(bad)
+        rospy.sleep(0.5)
+        scene = rospy.ServiceProxy('get_planning_scene', GetPlanningScene)
+        names = PlanningSceneComponents(components=PlanningSceneComponents.WORLD_OBJECT_NAMES)
+        self.assertNotIn(
+            'bad', [o.id for o in scene(components=names).scene.world.collision_objects]
+        )
+        self.link_pose('toy_link8')  # still answering
+
 
 if __name__ == '__main__':
     rostest.rosrun('arm1', 'move_group', MoveGroupTest)

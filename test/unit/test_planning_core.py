@@ -287,6 +287,20 @@ def test_goal_in_collision_and_start_in_collision_give_moveits_codes(robot, worl
     assert pipeline.plan(MotionRequest('nope', start, [])).error_code == -15
 
 
+def test_bad_requests_get_moveits_codes_naming_the_culprit(robot, pipeline):
+    start = ready(robot)
+    on_nothing = Constraints(positions=[PositionConstraint('no_such_link', (0.4, 0, 0.4))])
+    result = pipeline.plan(MotionRequest('toy_arm', start, [on_nothing]))
+    assert result.error_code == -18 and 'no_such_link' in result.message  # INVALID_LINK_NAME
+    nan_goal = Constraints(joints=[JointGoal('toy_joint1', float('nan'))])
+    assert pipeline.plan(MotionRequest('toy_arm', start, [nan_goal])).error_code == -16
+    bad_start = {**start, 'toy_joint2': float('inf')}
+    result = pipeline.plan(MotionRequest('toy_arm', bad_start, [nan_goal]))
+    assert result.error_code == -17 and 'toy_joint2' in result.message
+    unknown_joint = Constraints(joints=[JointGoal('elbow', 0.3)])
+    assert pipeline.plan(MotionRequest('toy_arm', start, [unknown_joint])).error_code == -16
+
+
 def test_pose_goal_and_orientation_path_constraint(robot, pipeline):
     start = ready(robot)
     robot.set_positions(start)

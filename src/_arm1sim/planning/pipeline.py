@@ -28,6 +28,7 @@ from .error_codes import (
     GOAL_VIOLATES_PATH_CONSTRAINTS,
     INVALID_GOAL_CONSTRAINTS,
     INVALID_GROUP_NAME,
+    INVALID_LINK_NAME,
     INVALID_ROBOT_STATE,
     NO_IK_SOLUTION,
     START_STATE_IN_COLLISION,
@@ -338,6 +339,24 @@ class PlanningPipeline:
             return NO_IK_SOLUTION, out
         return INVALID_GOAL_CONSTRAINTS, out
 
+    def check_request(self, req: MotionRequest) -> Tuple[int, str]:
+        """MoveIt's code and a message naming the culprit for a request it cannot plan."""
+        bad = [j for j, v in req.start.items() if not math.isfinite(v)]
+        if bad:
+            return INVALID_ROBOT_STATE, 'start state: %s not finite' % ', '.join(bad)
+        for c in req.goals + [req.path_constraints]:
+            for link in [x.link for x in c.positions] + [x.link for x in c.orientations]:
+                if link not in self.robot.link_index:
+                    return INVALID_LINK_NAME, "constraint on link '%s', not in the robot" % link
+            numbers = [
+                v for jc in c.joints for v in (jc.position, jc.tolerance_above, jc.tolerance_below)
+            ]
+            numbers += [float(v) for x in c.positions for v in x.center]
+            numbers += [float(v) for x in c.orientations for v in x.orientation]
+            if not all(math.isfinite(v) for v in numbers):
+                return INVALID_GOAL_CONSTRAINTS, 'a constraint holds a number that is not finite'
+        return SUCCESS, ''
+
     def plan(self, req: MotionRequest) -> MotionResult:
         t0 = time.monotonic()
         if req.group not in self.robot.srdf.groups:
@@ -348,6 +367,10 @@ class PlanningPipeline:
             return MotionResult(
                 INVALID_ROBOT_STATE, message='start state lacks joints %s' % missing
             )
+        code, message = self.check_request(req)
+        if code != SUCCESS:
+            log.error(message)
+            return MotionResult(code, message=message)
         code, start, fixed = self._fix_start(req, joints)
         if code != SUCCESS:
             return MotionResult(code, planning_time=time.monotonic() - t0, start=start)

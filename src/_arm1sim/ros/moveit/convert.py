@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import rospy
@@ -40,8 +41,11 @@ KINDS = {v: k for k, v in PRIMITIVES.items()}
 
 def pose_tuple(p: Pose) -> PoseT:
     q = (p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w)
-    if q == (0.0, 0.0, 0.0, 0.0):  # an unset quaternion: the identity, as MoveIt reads it
+    norm = math.sqrt(sum(v * v for v in q))
+    if norm == 0.0:  # unset: the identity, as MoveIt reads it (NaN stays NaN: refused later)
         q = (0.0, 0.0, 0.0, 1.0)
+    else:
+        q = tuple(v / norm for v in q)
     return (p.position.x, p.position.y, p.position.z), q
 
 

@@ -625,6 +625,10 @@ class MoveGroup:
             res.error_code.val = MoveItErrorCodes.INVALID_GROUP_NAME
             return res
         link = req.ik_link_name or self.robot.group_tip(group)
+        if link not in self.robot.link_index:
+            rospy.logerr("compute_ik: no link '%s' in the robot", link)
+            res.error_code.val = MoveItErrorCodes.INVALID_LINK_NAME
+            return res
         try:
             frame = self.frame_pose(req.pose_stamped.header.frame_id)
         except LookupError as exc:
@@ -689,6 +693,10 @@ class MoveGroup:
             return res
         links = self.robot.group_links(group)
         link = req.link_name or (links[-1] if links else '')
+        if link not in self.robot.link_index:
+            rospy.logerr("compute_cartesian_path: Unknown frame: '%s'", link)
+            res.error_code.val = MoveItErrorCodes.FAILURE
+            return res
         if req.max_step < sys.float_info.epsilon:
             rospy.logerr(
                 'Maximum step to take between consecutive configrations along Cartesian path '
