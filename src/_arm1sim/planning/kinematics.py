@@ -12,12 +12,14 @@ from __future__ import annotations
 import math
 import os
 import tempfile
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import pybullet as p
 
+from ..description import safe_xml
 from ..description.compact_urdf import compact_urdf
 from ..description.srdf import Srdf, TreeJoint, group_links, resolve_group
 from ..description.urdf_model import UrdfError, parse_description, parse_urdf, resolve_mesh_uris
@@ -40,6 +42,21 @@ class Mimic:
 
 def _no_packages(name: str) -> str:
     raise LookupError("package '%s' (no package path given)" % name)
+
+
+def _with_inertials(urdf: str) -> str:
+    """The URDF with a unit inertial at the frame of each link that has none: planning
+    never steps, and pybullet would print a warning per such link."""
+    root = safe_xml.parse_trusted(urdf)  # our own compact text, parsed once already
+    for link in root.findall('link'):
+        if link.find('inertial') is None:
+            ET.SubElement(link, 'inertial').extend(
+                [
+                    ET.Element('mass', value='1'),
+                    ET.Element('inertia', ixx='1', iyy='1', izz='1', ixy='0', ixz='0', iyz='0'),
+                ]
+            )
+    return ET.tostring(root, encoding='unicode')
 
 
 def quat_to_matrix(q: Vector) -> np.ndarray:
@@ -72,7 +89,9 @@ class RobotKinematics:
         try:
             root = parse_description(urdf_xml)
             model = parse_urdf(root)
-            resolved = resolve_mesh_uris(compact_urdf(root), find_package or _no_packages)
+            resolved = _with_inertials(
+                resolve_mesh_uris(compact_urdf(root), find_package or _no_packages)
+            )
         except (UrdfError, LookupError) as exc:
             raise ModelError('robot_description: %s' % exc) from None
         self.srdf = srdf
