@@ -4,7 +4,8 @@ actions under their names and types; a joint goal planned and executed on the si
 through its FollowJointTrajectory controller; a named hand state through GripperCommand; a
 pose goal, IK and FK agreeing; a box added, found in the planning scene, in collision,
 attached, detached and removed; a Cartesian path executed through execute_trajectory; a
-trajectory starting away from the arm refused as MoveIt refuses it."""
+trajectory starting away from the arm refused as MoveIt refuses it; bad requests answered;
+a second move_group (/rc) with the ros_control controller manager executing."""
 
 import os
 import sys
@@ -326,6 +327,35 @@ class MoveGroupTest(WorldTestCase):
             'bad', [o.id for o in scene(components=names).scene.world.collision_objects]
         )
         self.link_pose('toy_link8')  # still answering
+
+    def test_9_ros_control_manager_executes_through_the_running_controllers(self):
+        rospy.wait_for_service('/rc/plan_kinematic_path', 60)
+        now = self.position(ARM)
+        target = list(now)
+        target[0] += 0.2
+        req = GetMotionPlanRequest()
+        r = req.motion_plan_request
+        r.group_name = 'toy_arm'
+        r.start_state.is_diff = True
+        r.max_velocity_scaling_factor = 0.5
+        r.goal_constraints.append(
+            Constraints(
+                joint_constraints=[
+                    JointConstraint(
+                        joint_name=n, position=v, tolerance_above=1e-4, tolerance_below=1e-4
+                    )
+                    for n, v in zip(ARM, target)
+                ]
+            )
+        )
+        res = rospy.ServiceProxy('/rc/plan_kinematic_path', GetMotionPlan)(req).motion_plan_response
+        self.assertEqual(res.error_code.val, MoveItErrorCodes.SUCCESS)
+        client = actionlib.SimpleActionClient('/rc/execute_trajectory', ExecuteTrajectoryAction)
+        self.assertTrue(client.wait_for_server(rospy.Duration(30)))
+        client.send_goal(ExecuteTrajectoryGoal(trajectory=res.trajectory))
+        self.assertTrue(client.wait_for_result(rospy.Duration(60)))
+        self.assertEqual(client.get_result().error_code.val, MoveItErrorCodes.SUCCESS)
+        self.assertTrue(wait_for(lambda: abs(self.position(ARM)[0] - target[0]) < 0.03, 10))
 
 
 if __name__ == '__main__':

@@ -209,8 +209,9 @@ class RosControlControllerManager(ControllerManager):
             if kind is None or c.state != 'running':
                 continue
             joints = [j for r in c.claimed_resources for j in r.resources]
-            prefix = (self.ns + '/' if self.ns else '') + c.name
-            out.append(ControllerConfig(prefix.lstrip('/'), kind, joints, default=True))
+            # absolute, as the controller manager's namespace is (not move_group's)
+            name = '%s/%s' % (self.ns if self.ns.startswith('/') else '/' + self.ns, c.name)
+            out.append(ControllerConfig(name.replace('//', '/'), kind, joints, default=True))
         return out
 
 
