@@ -14,12 +14,12 @@ import pytest
 from conftest import REPO_ROOT, WORLD_FILE, FakeRos
 
 from _arm1sim.control.controller_manager import ControllerManager, ControllerManagerError
-from _arm1sim.control.franka_gripper_sim import FrankaGripperSim
-from _arm1sim.control.franka_interfaces import ROBOT_MODE_IDLE, ROBOT_MODE_MOVE
 from _arm1sim.control.switching import switch_while_updating
 from _arm1sim.description.sdf_world import read_world
-from _arm1sim.sim.franka_hw_sim import FrankaHWSim
 from _arm1sim.sim.simulation import Simulation, SpawnError
+from _arm1sim.vendors.franka.gripper_sim import FrankaGripperSim
+from _arm1sim.vendors.franka.hw_sim import FrankaHWSim
+from _arm1sim.vendors.franka.interfaces import ROBOT_MODE_IDLE, ROBOT_MODE_MOVE
 
 _spec = importlib.util.spec_from_file_location(
     'toy_panda', os.path.join(REPO_ROOT, 'test', 'robots', 'toy_panda.py')

@@ -41,7 +41,7 @@ def test_a_robot_sim_type_the_stand_in_lacks_is_named_at_spawn():
     lines = unimplemented(parse_urdf(with_type('acme_gazebo/AcmeHWSim')), 'acme')
     assert any('robotSimType acme_gazebo/AcmeHWSim' in line for line in lines), lines
     franka = unimplemented(parse_urdf(with_type('franka_gazebo/FrankaHWSim')), 'panda')
-    assert not any('robotSimType' in line for line in franka), franka  # sim/franka_hw_sim.py
+    assert not any('robotSimType' in line for line in franka), franka  # vendors/franka/hw_sim.py
     default = URDF.replace(
         '</robot>',
         '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo></robot>',

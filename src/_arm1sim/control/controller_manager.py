@@ -17,7 +17,7 @@ import threading
 from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
 
 from .controller import Controller, ControllerError, State
-from .interfaces import NodeFactory, NodeHandle, RobotHW, SwitchingRobotHW
+from .interfaces import NodeFactory, NodeHandle, RobotHW
 from .registry import CONTROLLER_TYPES, cpp_only
 
 log = logging.getLogger('_arm1sim.control')
@@ -390,8 +390,11 @@ class ControllerManager:
                         entry.controller.stop_request(time_ns)
                 for entry in request.start + request.restart:
                     entry.controller.start_request(time_ns)
-                if isinstance(self.robot_hw, SwitchingRobotHW):
-                    self.robot_hw.do_switch(
+                # RobotHW::doSwitch: every RobotHWSim has one; a plain RobotHW (the
+                # tuner's, a test's) may not, as upstream's default does nothing
+                do_switch = getattr(self.robot_hw, 'do_switch', None)
+                if do_switch is not None:
+                    do_switch(
                         [e.controller.claimed_resources() for e in request.start],
                         [e.controller.claimed_resources() for e in request.stop],
                     )

@@ -125,29 +125,33 @@ class RobotHW(Protocol):
         ...
 
 
-class RobotHWSim(RobotHW, Protocol):
-    """gazebo_ros_control's RobotHWSim: a RobotHW bound to a simulated robot."""
+class RobotHWSimError(ValueError):
+    """A hardware sim cannot simulate the description or its parameters; the message says
+    why (the spawn fails with it, naming the robotSimType)."""
 
-    def read(self) -> None:
-        """Joint state from the simulation into the handles."""
+
+class RobotHWSim(RobotHW, Protocol):
+    """gazebo_ros_control's RobotHWSim: a RobotHW bound to a simulated robot. Every hardware
+    sim, the default and each vendor's, is one of these, found by its ``<robotSimType>``
+    (sim/robot_hw_sims.py) and built from the description, the simulated robot and the
+    physics step; it raises RobotHWSimError when it cannot simulate them."""
+
+    def init_sim(self, model_nh: NodeHandle, robot_namespace: str) -> None:
+        """initSim: the parameters it needs are ``model_nh.params`` (the robot namespace's
+        subtree, as the ROS layer or a test hands them in); topics it offers go through
+        ``model_nh``. Raises RobotHWSimError on parameters it cannot use."""
+        ...
+
+    def read(self, time_ns: int, period_ns: int) -> None:
+        """readSim: joint state from the simulation into the handles, at sim time ``time_ns``,
+        ``period_ns`` after the last read."""
         ...
 
     def write(self) -> None:
-        """The handles' commands, saturated, to the simulation."""
+        """writeSim, every physics step: the handles' commands, saturated, to the simulation."""
         ...
-
-
-@runtime_checkable
-class SwitchingRobotHW(Protocol):
-    """A RobotHW that acts on controller switches (RobotHW::doSwitch), as FrankaHWSim does."""
 
     def do_switch(self, start: Sequence[Resources], stop: Sequence[Resources]) -> None:
-        """The claimed resources of the controllers just started and stopped."""
+        """RobotHW::doSwitch: the claimed resources of the controllers just started and
+        stopped (most hardware sims ignore them)."""
         ...
-
-
-@runtime_checkable
-class TimedRobotHWSim(Protocol):
-    """A RobotHWSim whose read wants the time (readSim(time, period)), as FrankaHWSim's."""
-
-    def read_at(self, time_ns: int, period_ns: int) -> None: ...

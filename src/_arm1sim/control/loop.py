@@ -12,7 +12,7 @@ import math
 from typing import Optional
 
 from .controller_manager import ControllerManager
-from .interfaces import RobotHWSim, TimedRobotHWSim
+from .interfaces import RobotHWSim
 
 log = logging.getLogger('_arm1sim.control')
 
@@ -48,8 +48,6 @@ class ControlLoop:
 
     def __init__(self, hw: RobotHWSim, manager: ControllerManager, period_ns: int) -> None:
         self.hw, self.manager, self.period_ns = hw, manager, period_ns
-        # Checked once: a runtime Protocol check costs as much as a small controller's update.
-        self._read_at = hw.read_at if isinstance(hw, TimedRobotHWSim) else None
         self.last_update_ns: Optional[int] = None
 
     def update(self, now_ns: int) -> bool:
@@ -63,10 +61,7 @@ class ControlLoop:
         due = elapsed >= self.period_ns
         if due:
             self.last_update_ns = now_ns
-            if self._read_at is not None:
-                self._read_at(now_ns, elapsed)
-            else:
-                self.hw.read()
+            self.hw.read(now_ns, elapsed)
             self.manager.update(now_ns, elapsed)
         self.hw.write()
         return due

@@ -2,17 +2,17 @@
 
 What pluginlib's controller_plugins.xml is to ros_control: a new type is its own module
 (a Controller subclass naming its ``type_name`` and ``interface``), imported here and
-listed in CONTROLLER_CLASSES.
+listed in CONTROLLER_CLASSES; a vendor's are listed in its room's manifest
+(vendors/__init__.py) and added here.
 """
 
 from __future__ import annotations
 
 from typing import Dict, Tuple, Type
 
+from ..vendors import load, rooms
 from .controller import Controller
 from .forward_command_controller import FORWARD_CONTROLLERS
-from .franka_gripper_sim import FrankaGripperSim
-from .franka_state_controller import FrankaStateController
 from .gripper_action_controller import GripperActionController, PositionGripperActionController
 from .joint_position_controller import JointPositionController
 from .joint_state_controller import JointStateController
@@ -33,14 +33,17 @@ CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = (
     *FORWARD_CONTROLLERS,
     GripperActionController,
     PositionGripperActionController,
-    FrankaStateController,
-    FrankaGripperSim,
+)
+VENDOR_CONTROLLER_CLASSES: Tuple[Type[Controller], ...] = tuple(
+    load(room, ref) for room in rooms() for ref in room.controllers
 )
 
 # Controller packages that are C++ plugins only (pluginlib libraries): no Python manager
 # can load them. Package -> the repository that ships it, for the error message.
 CPP_ONLY_PACKAGES = {
-    'franka_example_controllers': 'franka_ros',
+    package: repository
+    for room in rooms()
+    for package, repository in room.cpp_only_packages.items()
 }
 
 
@@ -55,7 +58,7 @@ def by_type_name(classes: Tuple[Type[Controller], ...]) -> Dict[str, Type[Contro
     return types
 
 
-CONTROLLER_TYPES = by_type_name(CONTROLLER_CLASSES)
+CONTROLLER_TYPES = by_type_name(CONTROLLER_CLASSES + VENDOR_CONTROLLER_CLASSES)
 
 
 def cpp_only(type_name: str) -> str:

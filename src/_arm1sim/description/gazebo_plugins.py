@@ -11,6 +11,7 @@ import logging
 from dataclasses import dataclass, field
 from typing import Any, Iterable, List, Optional, Set
 
+from ..vendors import robot_sim_types
 from .camera_sensor import CAMERA_PLUGIN, DEPTH_PLUGINS
 from .names import legal_ros_name, shown
 from .sdf_values import ZERO_POSE, Pose, flag, number, pose
@@ -22,8 +23,6 @@ log = logging.getLogger('_arm1sim.physics')
 # Plugins implemented outside sim.sensor_plugins' tables (whose keys count as handled too):
 # the rest are named in a warning at spawn.
 DEFAULT_ROBOT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
-# The RobotHWSim classes the stand-in has (sim/simulation.py makes them)
-ROBOT_SIM_TYPES = (DEFAULT_ROBOT_SIM_TYPE, 'franka_gazebo/FrankaHWSim')
 HANDLED_PLUGINS: Set[str] = {CONTROL_PLUGIN, *MIMIC_PLUGINS, CAMERA_PLUGIN, *DEPTH_PLUGINS}
 
 
@@ -152,9 +151,11 @@ def unimplemented(description: RobotModel, model: str, handled: Iterable[str] = 
             'Gazebo leaves it out' % (model, element.get('name', ''), link)
         )
     control = description.control_plugin
-    if control is not None and control.robot_sim_type not in ROBOT_SIM_TYPES:
-        # Gazebo loads the named RobotHWSim class; the stand-in has those of ROBOT_SIM_TYPES
-        # and says so rather than swap the default in silently.
+    sim_types = (DEFAULT_ROBOT_SIM_TYPE, *robot_sim_types())
+    if control is not None and control.robot_sim_type not in sim_types:
+        # Gazebo loads the named RobotHWSim class; the stand-in has the default and those of
+        # the vendor rooms' manifests (sim/robot_hw_sims.py), and says so rather than swap
+        # the default in silently.
         lines.append(
             "model '%s': robotSimType %s of gazebo_ros_control is not implemented by the "
             "stand-in: %s's joint interfaces are offered instead"

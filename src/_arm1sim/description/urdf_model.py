@@ -58,7 +58,7 @@ class Transmission:
     joint: str  # the first <joint>: a SimpleTransmission has one
     interfaces: list  # the first joint's hardware interfaces
     type: str = 'transmission_interface/SimpleTransmission'
-    # every <joint> as (name, role): franka_hw's state and model transmissions name several
+    # every <joint> as (name, role): a vendor's state transmissions name several
     joints: list = field(default_factory=list)
 
 
@@ -100,11 +100,13 @@ class RobotModel:
     unplaced_sensors: list = field(default_factory=list)
 
     def actuated_joints(self):
-        """Joints named by a transmission, with their hardware interface."""
+        """Joints named by a transmission, with their hardware interface. A transmission of
+        several joints drives none, as default_robot_hw_sim skips it (a vendor's state and
+        model interfaces are such; its own hardware sim reads them)."""
         out = []
         for t in self.transmissions:
-            if t.type.startswith('franka_hw/'):
-                continue  # franka_hw's state and model interfaces: no joint is driven by them
+            if len(t.joints) > 1:
+                continue
             joint = self.joints.get(t.joint)
             if joint is None:
                 raise UrdfError(

@@ -1,10 +1,10 @@
-"""Rigid-body dynamics of a fixed-base robot from pybullet: what franka_hw's model interface
+"""Rigid-body dynamics of a fixed-base robot from pybullet: what a vendor's model interface
 serves (mass matrix, Coriolis and gravity torques, Jacobians, frame poses).
 
 pybullet's calculate* functions take every movable joint of the body (its degrees of
 freedom, in joint-index order); callers name the joints they want and get those rows and
-columns. Poses and Jacobians are expressed in the frame of a chosen root link, as libfranka
-gives them in the robot's base frame (link0), not in the world.
+columns. Poses and Jacobians are expressed in the frame of a chosen root link, as a robot's
+controller gives them in its base frame (link0), not in the world.
 """
 
 from __future__ import annotations
@@ -104,7 +104,7 @@ class BodyDynamics:
 
 
 def homogeneous(pose: Pose) -> List[float]:
-    """A pose as libfranka's 4x4 homogeneous transform, column-major (16 values)."""
+    """A pose as a 4x4 homogeneous transform, column-major (16 values, Eigen's order)."""
     (x, y, z), quat = pose
     m = p.getMatrixFromQuaternion(quat)  # row-major 3x3
     return [m[0], m[3], m[6], 0.0, m[1], m[4], m[7], 0.0, m[2], m[5], m[8], 0.0, x, y, z, 1.0]

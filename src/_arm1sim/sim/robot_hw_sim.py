@@ -16,8 +16,8 @@ transmission's hardware interface says (default_robot_hw_sim.cpp's writeSim):
 A mimic follower (URDF ``<mimic>`` or roboticsgroup's plugin) is read but never written:
 physics.mimic drives it, as the plugin's SetPosition overrides any force in Gazebo.
 
-The pid gains are ``<robotNamespace>/gazebo_ros_control/pid_gains/<joint>``: the ROS
-layer reads them and hands them in as a plain dict (set_pid_gains).
+The pid gains are ``<robotNamespace>/gazebo_ros_control/pid_gains/<joint>``: init_sim
+finds them in the parameters its node handle carries (set_pid_gains takes them directly).
 """
 
 from __future__ import annotations
@@ -37,6 +37,7 @@ from ..control.hardware_interface import (
     saturate_effort,
     saturation_bounds,
 )
+from ..control.interfaces import NodeHandle, Resources
 from ..control.pid import Pid, PidConfigError
 from .limit_chatter import LimitChatterWatch, chatter_message
 
@@ -366,7 +367,20 @@ class DefaultRobotHWSim:
             )
         return handle
 
-    def read(self) -> None:
+    def init_sim(self, model_nh: NodeHandle, robot_namespace: str) -> None:
+        """initSim's parameters: ``joint_limits`` and ``gazebo_ros_control/pid_gains`` under
+        the robot namespace (either absent or not a dict: none)."""
+        params = model_nh.params
+        limits = params.get('joint_limits', {})
+        self.set_joint_limits(limits if isinstance(limits, dict) else {})
+        control = params.get('gazebo_ros_control', {})
+        gains = control.get('pid_gains', {}) if isinstance(control, dict) else {}
+        self.set_pid_gains(gains if isinstance(gains, dict) else {})
+
+    def do_switch(self, start: Sequence[Resources], stop: Sequence[Resources]) -> None:
+        """Each joint has one interface: a switch changes nothing here."""
+
+    def read(self, time_ns: int = 0, period_ns: int = 0) -> None:
         for h, (pos, vel) in zip(self._ordered, self.robot.read(self._indices)):
             h.position, h.velocity = pos, vel
 

@@ -11,9 +11,10 @@ import math
 import os
 import tempfile
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Protocol, Sequence, Tuple
 
 from ..control.controller_manager import ControllerManager
+from ..control.interfaces import RobotHWSim, RobotHWSimError
 from ..control.loop import ControlLoop, control_period_ns
 from ..description.camera_sensor import CameraSensor, camera_sensors
 from ..description.compact_urdf import compact_urdf
@@ -36,18 +37,12 @@ from ..physics.robot import Robot, RobotLoadError
 from ..physics.sensor_manager import Camera, SensorManager
 from ..physics.sim_sensor import SimSensor
 from ..physics.world import World
-from .franka_hw_sim import ROBOT_SIM_TYPE as FRANKA_SIM_TYPE
-from .franka_hw_sim import FrankaHWSim, FrankaHWSimError
-from .robot_hw_sim import DefaultRobotHWSim
+from .robot_hw_sims import make_robot_hw_sim
 from .sensor_plugins import build_sensors
 
 
 class SpawnError(ValueError):
     pass
-
-
-# The RobotHWSim a gazebo_ros_control plugin's <robotSimType> makes (default or Franka's)
-RobotHWSimType = Union[DefaultRobotHWSim, FrankaHWSim]
 
 
 class Plugin(Protocol):
@@ -63,7 +58,7 @@ class Model:
     name: str
     description: RobotModel
     robot: Robot
-    hw: Optional[RobotHWSimType] = None  # when the URDF has the gazebo_ros_control plugin
+    hw: Optional[RobotHWSim] = None  # when the URDF has the gazebo_ros_control plugin
     controller_manager: Optional[ControllerManager] = None
     control: Optional[ControlLoop] = None  # when its controllers update; with the manager
     namespace: str = ''
@@ -84,7 +79,7 @@ class PreparedUrdf:
     load_args: Tuple[str, Tuple[float, ...], Tuple[float, ...], bool, BodyOptions]
 
 
-ControllerManagerFactory = Callable[[RobotHWSimType, str], ControllerManager]
+ControllerManagerFactory = Callable[[RobotHWSim, str], ControllerManager]
 
 
 class Simulation:
@@ -273,13 +268,13 @@ class Simulation:
         if ns is None:
             ns = robot_namespace or model.name
         model.namespace = '/' + ns.strip('/')
-        if plugin.robot_sim_type == FRANKA_SIM_TYPE:
-            try:
-                model.hw = FrankaHWSim(model.description, model.robot, self.period)
-            except FrankaHWSimError as exc:
-                raise SpawnError('%s: %s' % (FRANKA_SIM_TYPE, exc))
-        else:
-            model.hw = DefaultRobotHWSim(model.description, model.robot, self.period)
+        # As gazebo_ros_control's pluginlib lookup of <robotSimType> (sim/robot_hw_sims.py)
+        try:
+            model.hw = make_robot_hw_sim(
+                plugin.robot_sim_type, model.description, model.robot, self.period
+            )
+        except RobotHWSimError as exc:
+            raise SpawnError('%s: %s' % (plugin.robot_sim_type, exc))
         if factory is not None:
             model.controller_manager = factory(model.hw, model.namespace)
 

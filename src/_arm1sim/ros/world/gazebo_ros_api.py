@@ -14,11 +14,11 @@ import rospy
 from gazebo_msgs.srv import DeleteModel, SetModelConfiguration
 from std_srvs.srv import Empty
 
+from ...control.interfaces import RobotHWSimError
 from ...description.names import shown
 from ...description.resource_paths import ResourcePaths, gazebo_paths
 from ...description.sdf_model import SdfModelError, model_dir_finder
 from ...description.sdf_to_urdf import ModelSpawn, sdf_spawn
-from ...sim.franka_hw_sim import FrankaHWSim, FrankaHWSimError
 from ...sim.model_state import WORLD_NAMES, State, compose, frame_state
 from ...sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
 from ..common.packages import find_package, gazebo_exports
@@ -167,23 +167,16 @@ class GazeboRosApi:
                     'controller manager namespace %s is not a legal ROS name'
                     % shown(model.namespace)
                 )
-            # What DefaultRobotHWSim reads from the parameter server: joint limits over the
-            # URDF's, and the hardware's own PIDs for position/velocity joints.
-            ns = model.namespace.rstrip('/')
-            if isinstance(model.hw, FrankaHWSim):
-                # franka_hw_sim reads its parameters (arm_id, motion_generators, ...) in
-                # initSim through the robot namespace's node handle.
-                nh = RosNodeHandle(model.namespace)
-                model.plugins.append(nh)
-                try:
-                    model.hw.init_sim(nh, model.namespace)
-                except FrankaHWSimError as exc:
-                    raise SpawnError('franka_gazebo/FrankaHWSim: %s' % exc)
-            else:
-                limits = rospy.get_param(ns + '/joint_limits', {})
-                model.hw.set_joint_limits(limits if isinstance(limits, dict) else {})
-                gains = rospy.get_param(ns + '/gazebo_ros_control/pid_gains', {})
-                model.hw.set_pid_gains(gains if isinstance(gains, dict) else {})
+            # initSim: the hardware sim reads what it needs (joint limits, PIDs, a vendor's
+            # own) from the robot namespace's parameters, through its node handle.
+            nh = RosNodeHandle(model.namespace)
+            model.plugins.append(nh)
+            try:
+                model.hw.init_sim(nh, model.namespace)
+            except RobotHWSimError as exc:
+                control = model.description.control_plugin
+                sim_type = control.robot_sim_type if control is not None else ''
+                raise SpawnError('%s: %s' % (sim_type, exc))
             services = ControllerManagerServices(model.hw, model.namespace)
             model.controller_manager = services.manager
             model.plugins.append(services)

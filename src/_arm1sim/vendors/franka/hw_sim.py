@@ -31,25 +31,25 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-from ..control.controller import ControllerError
-from ..control.franka_interfaces import (
+from ...control.controller import ControllerError
+from ...control.hardware_interface import (
+    EFFORT_JOINT_INTERFACE,
+    POSITION_JOINT_INTERFACE,
+    VELOCITY_JOINT_INTERFACE,
+    JointHandle,
+)
+from ...control.interfaces import NodeHandle, Publisher, Resources, RobotHWSimError
+from ...control.pid import Pid, PidConfigError
+from ...description.urdf_model import RobotModel
+from ...physics.body_dynamics import BodyDynamics, Pose, homogeneous, pose_of
+from ...physics.robot import Robot
+from .interfaces import (
     FRANKA_MODEL_INTERFACE,
     FRANKA_STATE_INTERFACE,
     ROBOT_MODE_IDLE,
     ROBOT_MODE_MOVE,
     FrankaRobotState,
 )
-from ..control.hardware_interface import (
-    EFFORT_JOINT_INTERFACE,
-    POSITION_JOINT_INTERFACE,
-    VELOCITY_JOINT_INTERFACE,
-    JointHandle,
-)
-from ..control.interfaces import NodeHandle, Publisher, Resources
-from ..control.pid import Pid, PidConfigError
-from ..description.urdf_model import RobotModel
-from ..physics.body_dynamics import BodyDynamics, Pose, homogeneous, pose_of
-from ..physics.robot import Robot
 
 log = logging.getLogger('_arm1sim.control')
 
@@ -61,7 +61,7 @@ INITIALIZED_PERIOD_NS = 100_000_000  # 'initialized' at 10 Hz of sim time (upstr
 HAND_F_T_NE = [0.7071, -0.7071, 0, 0, 0.7071, 0.7071, 0, 0, 0, 0, 1, 0, 0, 0, 0.1034, 1]
 
 
-class FrankaHWSimError(ValueError):
+class FrankaHWSimError(RobotHWSimError):
     """The description cannot be simulated as a Franka robot; the message says why."""
 
 
@@ -96,7 +96,7 @@ class _Joint:
 
 
 class _Model:
-    """franka_hw's FrankaModelHandle over the simulated body (control/franka_interfaces)."""
+    """franka_hw's FrankaModelHandle over the simulated body (interfaces.py)."""
 
     def __init__(self, hw: FrankaHWSim) -> None:
         self.hw = hw
@@ -133,7 +133,7 @@ def _vector(params: Mapping[str, Any], key: str, default: Sequence[float], n: in
 
 
 class FrankaHWSim:
-    """A RobotHWSim (control/interfaces.py) and FrankaHW (control/franka_interfaces.py)."""
+    """A RobotHWSim (control/interfaces.py) and FrankaHW (interfaces.py)."""
 
     def __init__(self, description: RobotModel, robot: Robot, period: float) -> None:
         self.robot, self.period = robot, period
@@ -349,11 +349,13 @@ class FrankaHWSim:
         self.state.robot_mode = ROBOT_MODE_MOVE if moving else ROBOT_MODE_IDLE
 
     # -- RobotHWSim -----------------------------------------------------------------------
-    def read(self) -> None:
-        self.read_at(self._time_ns + self._period_ns, self._period_ns)
-
-    def read_at(self, time_ns: int, period_ns: int) -> None:
-        """readSim: joint states, then the robot state (updateRobotState)."""
+    def read(self, time_ns: Optional[int] = None, period_ns: Optional[int] = None) -> None:
+        """readSim: joint states, then the robot state (updateRobotState); without a time,
+        one physics step after the last read."""
+        if period_ns is None:
+            period_ns = self._period_ns
+        if time_ns is None:
+            time_ns = self._time_ns + period_ns
         dt = max(period_ns, 1) * 1e-9
         self._time_ns = time_ns
         # One read of every degree of freedom serves the handles and the dynamics.

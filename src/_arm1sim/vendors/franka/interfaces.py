@@ -1,6 +1,6 @@
 """franka_hw's FrankaStateInterface and FrankaModelInterface, ROS-free.
 
-A hardware offering them (sim/franka_hw_sim.py) hands controllers a FrankaRobotState (the
+A hardware offering them (hw_sim.py) hands controllers a FrankaRobotState (the
 fields of libfranka's RobotState, as franka_msgs/FrankaState carries them) and a model of
 the arm's dynamics. Matrices are lists: 4x4 transforms column-major (16 values) as in
 libfranka, the 7x7 mass matrix and 6x7 Jacobians as lists of rows.
@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 from typing import Any, Dict, List, Protocol, runtime_checkable
 
-from .interfaces import RobotHW
+from ...control.interfaces import RobotHW
 
 FRANKA_STATE_INTERFACE = 'franka_hw/FrankaStateInterface'
 FRANKA_MODEL_INTERFACE = 'franka_hw/FrankaModelInterface'

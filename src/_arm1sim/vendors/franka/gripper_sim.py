@@ -9,7 +9,7 @@ speed under ``grasp/resting_threshold`` for ``grasp/consecutive_samples`` update
 then holds, pressing with the goal's force. ``joint_states`` of the fingers at 30 Hz.
 
 Goals end from update (the physics thread), outside the lock: actionlib calls on_goal
-holding its own lock (see gripper_action_controller.py).
+holding its own lock (see control/gripper_action_controller.py).
 """
 
 from __future__ import annotations
@@ -20,10 +20,10 @@ from collections import deque
 from dataclasses import dataclass
 from typing import Any, Callable, Deque, Dict, List, Optional, Tuple
 
-from .controller import Controller, ControllerError
-from .hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
-from .interfaces import GoalHandle, NodeHandle, Publisher, RobotHW
-from .pid import Pid, PidConfigError
+from ...control.controller import Controller, ControllerError
+from ...control.hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
+from ...control.interfaces import GoalHandle, NodeHandle, Publisher, RobotHW
+from ...control.pid import Pid, PidConfigError
 
 MAX_FINGER_WIDTH = 0.08  # m, both fingers
 MOVE_WIDTH_TOLERANCE = 0.001

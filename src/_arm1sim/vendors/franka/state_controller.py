@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from typing import List, Optional
 
-from .controller import Controller, ControllerError, require_param
-from .franka_interfaces import FrankaHW, FrankaRobotState
-from .interfaces import NodeHandle, Publisher, RobotHW
+from ...control.controller import Controller, ControllerError, require_param
+from ...control.interfaces import NodeHandle, Publisher, RobotHW
+from .interfaces import FrankaHW, FrankaRobotState
 
 
 class FrankaStateController(Controller):
