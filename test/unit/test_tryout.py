@@ -6,7 +6,7 @@ import os
 import pytest
 
 from _arm1sim.tryout import logs, report, workspace
-from _arm1sim.tryout.cli import launch_args
+from _arm1sim.tryout.cli import launch_args, parse_args
 from _arm1sim.tryout.probe import STEP, _target, remapped
 
 PACKAGE = '''<?xml version="1.0"?>
@@ -51,6 +51,22 @@ def test_needed_packages_follow_depends_and_find_but_stay_in_the_checkout(tmp_pa
     ws = tmp_path / 'ws'
     workspace.make_workspace(str(ws), needed)
     assert os.readlink(ws / 'src' / 'robot_gazebo') == str(tmp_path / 'robot_gazebo')
+
+
+def test_unignore_opens_one_catkin_ignored_dir_and_not_those_below_it(tmp_path):
+    # Interbotix's interbotix_ros_xsarms ships a CATKIN_IGNORE its install script removes;
+    # interbotix_xsarm_perception's own stays.
+    arms = tmp_path / 'xsarms'
+    package(arms, 'xsarm_gazebo', ['xsarm_descriptions'])
+    package(arms, 'xsarm_descriptions')
+    package(arms, 'xsarm_perception')
+    (arms / 'CATKIN_IGNORE').write_text('')
+    (arms / 'xsarm_perception' / 'CATKIN_IGNORE').write_text('')
+    assert workspace.find_packages(str(tmp_path)) == {}
+    found = workspace.find_packages(str(tmp_path), [str(arms)])
+    assert sorted(found) == ['xsarm_descriptions', 'xsarm_gazebo']
+    args = parse_args(['co', 'xsarm_gazebo', 'x.launch', '--unignore', str(arms)])
+    assert args.unignore == [str(arms)]
 
 
 def test_a_package_twice_in_a_checkout_is_refused_by_name(tmp_path):

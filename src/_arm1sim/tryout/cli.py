@@ -59,6 +59,14 @@ def parse_args(argv: Optional[List[str]]) -> argparse.Namespace:
         metavar=('PACKAGE', 'LAUNCH'),
         help='another launch file started once the world is up (e.g. the controllers)',
     )
+    p.add_argument(
+        '--unignore',
+        action='append',
+        default=[],
+        metavar='DIR',
+        help="a checkout's dir whose CATKIN_IGNORE the vendor's install script removes "
+        '(repeatable)',
+    )
     p.add_argument('--out', help='report directory (default: ./try_robot_<package>_<time>)')
     p.add_argument('--workspace', help='build here instead of a throw-away dir (kept)')
     p.add_argument('--keep', action='store_true', help='keep the throw-away workspace')
@@ -145,7 +153,7 @@ def run(
     for c in [a.checkout, *a.also]:
         if not os.path.isdir(c):
             raise SystemExit('try_robot: %s is not a directory' % c)
-        for name, pkg in workspace.find_packages(c).items():
+        for name, pkg in workspace.find_packages(c, a.unignore).items():
             available.setdefault(name, pkg)
     try:
         packages = workspace.needed_packages(available, a.package)
@@ -160,6 +168,7 @@ def run(
     args = launch_args(launch_path, a.args)
     rep['launch']['args'] = args
     rep['launch']['then'] = [list(t) for t in a.then]
+    rep['launch']['unignore'] = list(a.unignore)
 
     ws = a.workspace or tempfile.mkdtemp(prefix='try_robot_ws_')
     progress(

@@ -45,15 +45,17 @@ class BuildResult:
     log_tail: str = ''
 
 
-def find_packages(checkout: str) -> Dict[str, Package]:
+def find_packages(checkout: str, unignore: Sequence[str] = ()) -> Dict[str, Package]:
     """Every catkin package (a dir with package.xml) under checkout, by name.
 
     Like catkin: a package's own subdirectories are not searched, nor dirs holding
-    CATKIN_IGNORE.
+    CATKIN_IGNORE, except the dirs in unignore (whose CATKIN_IGNORE a vendor's install
+    script removes, as Interbotix's does; the ones below them still count).
     """
     found: Dict[str, Package] = {}
+    keep = {os.path.realpath(u) for u in unignore}
     for root, dirs, files in os.walk(checkout, followlinks=False):
-        if 'CATKIN_IGNORE' in files:
+        if 'CATKIN_IGNORE' in files and os.path.realpath(root) not in keep:
             dirs[:] = []
             continue
         dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS and not d.startswith('.'))
