@@ -24,6 +24,10 @@ ORIENTATION_TOLERANCE = 1e-4  # rad
 DAMPING = 1e-3
 MAX_STEP = 0.3  # rad (or m) per iteration and joint: keeps a step inside the linear range
 ITERATIONS = 200  # per attempt
+# An attempt whose error has not shrunk by STALL_GAIN over STALL_ITERATIONS is stuck (at a
+# joint limit, a singularity): a restart from elsewhere does better with the time left.
+STALL_ITERATIONS = 15
+STALL_GAIN = 0.99
 
 
 @dataclass
@@ -42,6 +46,7 @@ def _solve_from(robot: RobotKinematics, req: IkRequest, q: np.ndarray) -> Option
     names = list(req.joints)
     lower = np.array([robot.bounds[n].lower for n in names])
     upper = np.array([robot.bounds[n].upper for n in names])
+    best, since_best = np.inf, 0
     for _ in range(ITERATIONS):
         robot.set_positions(dict(zip(names, q)))
         pos, orn = robot.link_pose(req.link)
@@ -60,6 +65,13 @@ def _solve_from(robot: RobotKinematics, req: IkRequest, q: np.ndarray) -> Option
                 return q
             err = np.concatenate([err_p, err_r])
             jac = robot.jacobian(req.link, names)
+        size = float(np.linalg.norm(err))
+        if size < best * STALL_GAIN:
+            best, since_best = size, 0
+        else:
+            since_best += 1
+            if since_best >= STALL_ITERATIONS:
+                return None
         jjt = jac @ jac.T + DAMPING**2 * np.eye(jac.shape[0])
         dq = jac.T @ np.linalg.solve(jjt, err)
         largest = np.max(np.abs(dq))

@@ -46,6 +46,9 @@ log = logging.getLogger(__name__)
 
 # How many IK solutions a pose goal offers the planner (MoveIt samples its goal region).
 GOAL_SAMPLES = 4
+# Configs give IK KDL's C++ budget (kinematics_solver_timeout: 0.005 s); this solver is
+# Python, about ten times slower an iteration, so it gets at least this much (s).
+IK_MIN_TIMEOUT = 0.05
 
 
 @dataclass
@@ -211,7 +214,9 @@ class PlanningPipeline:
             position,
             orientation,
             seed,
-            timeout=cfg.timeout if timeout is None or timeout <= 0 else timeout,
+            timeout=max(
+                IK_MIN_TIMEOUT, cfg.timeout if timeout is None or timeout <= 0 else timeout
+            ),
             attempts=attempts,
         )
         return solve_ik(self.robot, req, accept, self.rng)
