@@ -22,7 +22,7 @@ from _arm1sim.vendors.tinkerbot.hw_sim import TinkerHWSim
 
 # The core: the layers and the ROS rooms every robot goes through (ros/tools and tryout/
 # name vendors' launch files and profiles as examples, which is their job).
-CORE = ['description', 'physics', 'control', 'sim', 'ros/world', 'ros/plugins']
+CORE = ['description', 'physics', 'control', 'sim', 'ros/world', 'ros/control', 'ros/plugins']
 SRC = os.path.join(REPO_ROOT, 'src', '_arm1sim')
 TINKER = 'tinkerbot_gazebo/TinkerHWSim'
 

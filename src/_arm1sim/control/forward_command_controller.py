@@ -22,8 +22,12 @@ from .hardware_interface import (
     JointHandle,
 )
 from .interfaces import NodeHandle, RobotHW
+from .message_types import DATA, register_message
 
 log = logging.getLogger('_arm1sim.control')
+
+register_message('std_msgs/Float64', DATA)  # the commands
+register_message('std_msgs/Float64MultiArray', DATA)
 
 WARN_PERIOD = 5.0  # seconds between repeated warnings of one kind
 

@@ -21,9 +21,12 @@ from typing import Any, ClassVar, Dict, Optional, Tuple
 from .controller import Controller, ControllerError, require_param
 from .hardware_interface import EFFORT_JOINT_INTERFACE, POSITION_JOINT_INTERFACE, JointHandle
 from .interfaces import GoalHandle, NodeHandle, RobotHW
+from .message_types import FIELDS, GRIPPER_COMMAND_GOAL, register_action
 from .pid import Pid, PidConfigError
 
 log = logging.getLogger('_arm1sim.control')
+
+register_action('control_msgs/GripperCommand', GRIPPER_COMMAND_GOAL, FIELDS)
 
 NS = 1e-9
 

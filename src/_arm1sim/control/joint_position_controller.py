@@ -12,9 +12,13 @@ from .angles import shortest_angular_distance, shortest_angular_distance_with_la
 from .controller import Controller, ControllerError, require_param
 from .hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
 from .interfaces import ConfigServer, NodeHandle, Publisher, RobotHW
+from .message_types import DATA, STAMPED, register_message
 from .pid import Pid, PidConfigError
 
 log = logging.getLogger('_arm1sim.control')
+
+register_message('control_msgs/JointControllerState', STAMPED)
+register_message('std_msgs/Float64', DATA)  # the command
 
 STATE_PUBLISH_DIVIDER = 10  # state goes out every 10th update, as in ros_controllers
 WARN_PERIOD = 5.0  # seconds between repeated warnings of one kind

@@ -7,6 +7,9 @@ from typing import List, Optional, Tuple
 
 from .controller import Controller, ControllerError, require_param
 from .interfaces import NodeHandle, Publisher, RobotHW
+from .message_types import STAMPED, register_message
+
+register_message('sensor_msgs/JointState', STAMPED)
 
 ExtraJoint = Tuple[str, float, float, float]  # name, position, velocity, effort
 

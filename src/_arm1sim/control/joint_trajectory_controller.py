@@ -25,6 +25,16 @@ from .hardware_interface import (
     VELOCITY_JOINT_INTERFACE,
 )
 from .interfaces import Fields, GoalHandle, NodeHandle, Publisher, RobotHW
+from .message_types import (
+    FOLLOW_JOINT_TRAJECTORY_GOAL,
+    QUERY_TRAJECTORY_STATE,
+    STAMPED,
+    TRAJECTORY,
+    TRAJECTORY_STATE,
+    register_action,
+    register_message,
+    register_service,
+)
 from .pid import Pid, PidConfigError
 from .trajectory import (
     JointTrajectory,
@@ -39,6 +49,13 @@ from .trajectory import (
 )
 
 log = logging.getLogger('_arm1sim.control')
+
+register_message('control_msgs/JointTrajectoryControllerState', TRAJECTORY_STATE)
+register_message('trajectory_msgs/JointTrajectory', STAMPED, TRAJECTORY)  # the command
+register_action(
+    'control_msgs/FollowJointTrajectory', FOLLOW_JOINT_TRAJECTORY_GOAL, TRAJECTORY_STATE
+)
+register_service('control_msgs/QueryTrajectoryState', QUERY_TRAJECTORY_STATE)
 
 # control_msgs/FollowJointTrajectoryResult error codes
 SUCCESSFUL = 0

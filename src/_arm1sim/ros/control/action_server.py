@@ -19,7 +19,7 @@ from typing import Any, Callable, Dict, List, Optional
 import rospy
 
 from ...control.interfaces import Fields
-from .messages import ACTIONS, Fill
+from .messages import Fill, action
 
 
 class RosGoalHandle:
@@ -85,7 +85,7 @@ class ActionServer:
         on_goal: Callable[[Any], None],
         on_cancel: Callable[[Any], None],
     ) -> None:
-        spec, goal_reader, result_class, feedback_class, fill_feedback = ACTIONS[type_name]
+        spec, goal_reader, result_class, feedback_class, fill_feedback = action(type_name)
 
         def wrap(gh: Any) -> RosGoalHandle:
             return RosGoalHandle(

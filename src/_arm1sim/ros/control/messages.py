@@ -1,18 +1,21 @@
 """ROS messages <-> the plain dicts and floats of the ROS-free control core: what a
-controller's node handle publishes, reads, serves and answers, by type name."""
+controller's node handle publishes, reads, serves and answers, by type name.
+
+Which types exist and how each goes is control/message_types.py's registry, which the
+controllers fill; here are the fill and read kinds, one function each, and the classes,
+imported by the type name's package when a type is first used (``message``, ``action``,
+``service``): a package that is not installed fails that use alone, naming the type.
+"""
 
 from __future__ import annotations
 
+import importlib
 from typing import Any, Callable, Dict, List, Tuple
 
 import rospy
-from control_msgs.msg import JointControllerState, JointTrajectoryControllerState
-from franka_msgs.msg import FrankaState
-from geometry_msgs.msg import WrenchStamped
-from sensor_msgs.msg import JointState
-from std_msgs.msg import Bool, Float64, Float64MultiArray
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+from trajectory_msgs.msg import JointTrajectoryPoint
 
+from ...control import message_types as types
 from ...control.interfaces import Fields
 from ..common.stamps import duration_ns, to_time
 
@@ -109,101 +112,80 @@ def read_follow_joint_trajectory_goal(goal: Any) -> Dict[str, Any]:
     )
 
 
-# type name -> (message class, fill(message, core's fields))
-MESSAGES: Dict[str, Tuple[type, Fill]] = {
-    'sensor_msgs/JointState': (JointState, _fill_stamped),
-    'control_msgs/JointControllerState': (JointControllerState, _fill_stamped),
-    'std_msgs/Float64': (Float64, _fill_data),
-    'std_msgs/Float64MultiArray': (Float64MultiArray, _fill_data),
-    'control_msgs/JointTrajectoryControllerState': (
-        JointTrajectoryControllerState,
-        _fill_trajectory_state,
-    ),
-    'trajectory_msgs/JointTrajectory': (JointTrajectory, _fill_stamped),
-    'std_msgs/Bool': (Bool, _fill_fields),
-    'franka_msgs/FrankaState': (FrankaState, _fill_stamped),
-    'geometry_msgs/WrenchStamped': (WrenchStamped, _fill_wrench),
-}
-# type name -> what a subscriber's callback gets from a message (default: its ``data``)
-READERS: Dict[str, Callable[[Any], Any]] = {
-    'trajectory_msgs/JointTrajectory': read_trajectory,
-}
-
-
-def _actions() -> Dict[str, Tuple[Any, Callable[[Any], Any], type, type, Fill]]:
-    from control_msgs.msg import (
-        FollowJointTrajectoryAction,
-        FollowJointTrajectoryFeedback,
-        FollowJointTrajectoryResult,
-        GripperCommandAction,
-        GripperCommandFeedback,
-        GripperCommandResult,
-    )
-    from franka_gripper.msg import (
-        GraspAction,
-        GraspFeedback,
-        GraspResult,
-        HomingAction,
-        HomingFeedback,
-        HomingResult,
-        MoveAction,
-        MoveFeedback,
-        MoveResult,
-        StopAction,
-        StopFeedback,
-        StopResult,
-    )
-
-    def read_fields(goal: Any) -> Dict[str, Any]:
-        """A flat goal (franka_gripper's) as its fields; a nested message as a dict too."""
-        out: Dict[str, Any] = {}
-        for name in goal.__slots__:
-            value = getattr(goal, name)
-            out[name] = read_fields(value) if hasattr(value, '__slots__') else value
-        return out
-
-    franka = {
-        'franka_gripper/' + name: (action, read_fields, result, feedback, _fill_fields)
-        for name, action, result, feedback in (
-            ('Move', MoveAction, MoveResult, MoveFeedback),
-            ('Grasp', GraspAction, GraspResult, GraspFeedback),
-            ('Homing', HomingAction, HomingResult, HomingFeedback),
-            ('Stop', StopAction, StopResult, StopFeedback),
-        )
-    }
-    return {
-        **franka,
-        'control_msgs/FollowJointTrajectory': (
-            FollowJointTrajectoryAction,
-            read_follow_joint_trajectory_goal,
-            FollowJointTrajectoryResult,
-            FollowJointTrajectoryFeedback,
-            _fill_trajectory_state,
-        ),
-        'control_msgs/GripperCommand': (
-            GripperCommandAction,
-            read_gripper_command_goal,
-            GripperCommandResult,
-            GripperCommandFeedback,
-            _fill_fields,
-        ),
-    }
+def read_fields(msg: Any) -> Dict[str, Any]:
+    """A message's fields as a dict (a nested message as a dict too): a flat goal's."""
+    out: Dict[str, Any] = {}
+    for name in msg.__slots__:
+        value = getattr(msg, name)
+        out[name] = read_fields(value) if hasattr(value, '__slots__') else value
+    return out
 
 
 def read_gripper_command_goal(goal: Any) -> Dict[str, Any]:
     return dict(command=dict(position=goal.command.position, max_effort=goal.command.max_effort))
 
 
-def _services() -> Dict[str, Tuple[Any, Callable[[Any], Fields]]]:
-    from control_msgs.srv import QueryTrajectoryState
+FILLS: Dict[str, Fill] = {
+    types.FIELDS: _fill_fields,
+    types.STAMPED: _fill_stamped,
+    types.DATA: _fill_data,
+    types.TRAJECTORY_STATE: _fill_trajectory_state,
+    types.WRENCH: _fill_wrench,
+}
+READS: Dict[str, Callable[[Any], Any]] = {
+    types.DATA: read_data,
+    types.FIELDS: read_fields,
+    types.TRAJECTORY: read_trajectory,
+    types.FOLLOW_JOINT_TRAJECTORY_GOAL: read_follow_joint_trajectory_goal,
+    types.GRIPPER_COMMAND_GOAL: read_gripper_command_goal,
+    types.QUERY_TRAJECTORY_STATE: lambda req: dict(time=duration_ns(req.time)),
+}
 
-    return {
-        'control_msgs/QueryTrajectoryState': (
-            QueryTrajectoryState,
-            lambda req: dict(time=duration_ns(req.time)),
+
+class MessageTypeError(LookupError):
+    """A type no controller registered, or whose package is not installed."""
+
+
+def _class(type_name: str, kind: str, suffix: str = '') -> Any:
+    package, name = type_name.split('/', 1)
+    try:
+        return getattr(importlib.import_module('%s.%s' % (package, kind)), name + suffix)
+    except (ImportError, AttributeError) as exc:
+        raise MessageTypeError(
+            '%s: no %s.%s.%s (%s); is its package built and sourced?'
+            % (type_name, package, kind, name + suffix, exc)
+        ) from None
+
+
+def _spec(table: Dict[str, Any], type_name: str, what: str) -> Any:
+    spec = table.get(type_name)
+    if spec is None:
+        raise MessageTypeError(
+            '%s type %s is registered by no controller (control/message_types.py)'
+            % (what, type_name)
         )
-    }
+    return spec
 
 
-ACTIONS = _actions()
-SERVICES = _services()
+def message(type_name: str) -> Tuple[type, Fill, Callable[[Any], Any]]:
+    """(class, fill for publishing, read for subscribers) of a registered message type."""
+    spec = _spec(types.MESSAGES, type_name, 'message')
+    return _class(type_name, 'msg'), FILLS[spec.fill], READS[spec.read]
+
+
+def action(type_name: str) -> Tuple[Any, Callable[[Any], Any], type, type, Fill]:
+    """(the Action class, its goal's read, Result class, Feedback class, the feedback's fill)."""
+    spec = _spec(types.ACTIONS, type_name, 'action')
+    return (
+        _class(type_name, 'msg', 'Action'),
+        READS[spec.read_goal],
+        _class(type_name, 'msg', 'Result'),
+        _class(type_name, 'msg', 'Feedback'),
+        FILLS[spec.fill_feedback],
+    )
+
+
+def service(type_name: str) -> Tuple[Any, Callable[[Any], Fields]]:
+    """(the service class, its request's read)."""
+    spec = _spec(types.SERVICES, type_name, 'service')
+    return _class(type_name, 'srv'), READS[spec.read_request]

@@ -1,5 +1,5 @@
 """The node handle controllers receive (control/interfaces.py's NodeHandle and
-ConfigServer), implemented with rospy; control/messages.py translates the messages.
+ConfigServer), implemented with rospy; messages.py translates the messages.
 """
 
 from __future__ import annotations
@@ -12,12 +12,12 @@ import rospy
 from ...control.interfaces import Fields, Params
 from ..common.publishers import synchronous_publisher
 from .action_server import ActionServer
-from .messages import MESSAGES, READERS, SERVICES, Fill, read_data
+from .messages import Fill, message, service
 
 
 class _Service:
     def __init__(self, name: str, type_name: str, handler: Callable[[Fields], Fields]) -> None:
-        srv_class, read_request = SERVICES[type_name]
+        srv_class, read_request = service(type_name)
 
         def call(req: Any) -> Any:
             try:
@@ -76,7 +76,7 @@ class RosNodeHandle:
 
     def advertise(self, topic: str, type_name: str, queue_size: int) -> _Publisher:
         # queue_size is part of the node handle's interface; publishing here is synchronous.
-        cls, fill = MESSAGES[type_name]
+        cls, fill, _ = message(type_name)
         pub = synchronous_publisher(self._name(topic), cls)
         self._handles.append(pub)
         return _Publisher(pub, cls, fill)
@@ -84,8 +84,7 @@ class RosNodeHandle:
     def subscribe(
         self, topic: str, type_name: str, callback: Callable[[Any], object]
     ) -> rospy.Subscriber:
-        cls, _ = MESSAGES[type_name]
-        read = READERS.get(type_name, read_data)
+        cls, _, read = message(type_name)
 
         def deliver(msg: Any) -> None:
             callback(read(msg))

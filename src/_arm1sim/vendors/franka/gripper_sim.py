@@ -23,7 +23,19 @@ from typing import Any, Callable, Deque, Dict, List, Optional, Tuple
 from ...control.controller import Controller, ControllerError
 from ...control.hardware_interface import EFFORT_JOINT_INTERFACE, JointHandle
 from ...control.interfaces import GoalHandle, NodeHandle, Publisher, RobotHW
+from ...control.message_types import (
+    FIELDS,
+    GRIPPER_COMMAND_GOAL,
+    STAMPED,
+    register_action,
+    register_message,
+)
 from ...control.pid import Pid, PidConfigError
+
+register_message('sensor_msgs/JointState', STAMPED)
+for _name in ('Move', 'Grasp', 'Homing', 'Stop'):
+    register_action('franka_gripper/' + _name, FIELDS, FIELDS)
+register_action('control_msgs/GripperCommand', GRIPPER_COMMAND_GOAL, FIELDS)
 
 MAX_FINGER_WIDTH = 0.08  # m, both fingers
 MOVE_WIDTH_TOLERANCE = 0.001

@@ -39,6 +39,7 @@ from ...control.hardware_interface import (
     JointHandle,
 )
 from ...control.interfaces import NodeHandle, Publisher, Resources, RobotHWSimError
+from ...control.message_types import FIELDS, register_message
 from ...control.pid import Pid, PidConfigError
 from ...description.urdf_model import RobotModel
 from ...physics.body_dynamics import BodyDynamics, Pose, homogeneous, pose_of
@@ -52,6 +53,8 @@ from .interfaces import (
 )
 
 log = logging.getLogger('_arm1sim.control')
+
+register_message('std_msgs/Bool', FIELDS)  # initialized
 
 ROBOT_SIM_TYPE = 'franka_gazebo/FrankaHWSim'
 SIMPLE_TRANSMISSION = 'transmission_interface/SimpleTransmission'

@@ -12,7 +12,12 @@ from typing import List, Optional
 
 from ...control.controller import Controller, ControllerError, require_param
 from ...control.interfaces import NodeHandle, Publisher, RobotHW
+from ...control.message_types import STAMPED, WRENCH, register_message
 from .interfaces import FrankaHW, FrankaRobotState
+
+register_message('franka_msgs/FrankaState', STAMPED)
+register_message('sensor_msgs/JointState', STAMPED)
+register_message('geometry_msgs/WrenchStamped', WRENCH)
 
 
 class FrankaStateController(Controller):
