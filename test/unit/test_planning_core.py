@@ -271,6 +271,18 @@ def test_joint_goal_around_an_obstacle_is_collision_free(robot, world, pipeline)
     assert steps < 0.2
 
 
+def test_several_planning_attempts_share_the_planning_time(robot, pipeline):
+    start = ready(robot)
+    goal = Constraints(joints=[JointGoal('toy_joint1', 1.0), JointGoal('toy_joint3', -0.5)])
+    one = pipeline.plan(MotionRequest('toy_arm', start, [goal], num_planning_attempts=1))
+    three = pipeline.plan(
+        MotionRequest('toy_arm', start, [goal], num_planning_attempts=3, allowed_planning_time=3.0)
+    )
+    assert one.error_code == three.error_code == 1
+    assert three.planning_time < 3.0 + 0.5  # the attempts share it
+    assert np.allclose(three.trajectory.positions[-1][0], 1.0)
+
+
 def test_goal_in_collision_and_start_in_collision_give_moveits_codes(robot, world, pipeline):
     start = ready(robot)
     robot.set_positions(start)

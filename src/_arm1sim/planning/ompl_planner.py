@@ -131,17 +131,13 @@ class JointSpacePlanner:
         self.joints = list(joints)
         self.valid = valid
 
-    def plan(
+    def _setup(
         self,
         start: Dict[str, float],
         goals: List[Dict[str, float]],
         config: Optional[PlannerConfig],
-        allowed_time: float = 5.0,
-        longest_valid_segment_fraction: float = 0.005,
-        simplify: bool = True,
-        minimum_waypoint_count: int = 2,
-    ) -> PlanResult:
-        t0 = time.monotonic()
+        longest_valid_segment_fraction: float,
+    ) -> Any:
         n = len(self.joints)
         space = ob.RealVectorStateSpace(n)
         bounds = ob.RealVectorBounds(n)
@@ -175,20 +171,48 @@ class JointSpacePlanner:
             goal.addState(gs)
         ss.setGoal(goal)
         ss.setPlanner(make_planner(si, config))
-        status = ss.solve(max(0.0, allowed_time))
-        kind = status.getStatus()
+        return ss
+
+    def plan(
+        self,
+        start: Dict[str, float],
+        goals: List[Dict[str, float]],
+        config: Optional[PlannerConfig],
+        allowed_time: float = 5.0,
+        longest_valid_segment_fraction: float = 0.005,
+        simplify: bool = True,
+        minimum_waypoint_count: int = 2,
+        attempts: int = 1,
+    ) -> PlanResult:
+        """With ``attempts`` > 1, as MoveIt's num_planning_attempts: several plans (here one
+        after another, sharing the time), the shortest kept."""
+        t0 = time.monotonic()
         S = ob.PlannerStatus
-        if kind != S.EXACT_SOLUTION or not ss.haveExactSolutionPath():
+        best: Any = None
+        best_length = math.inf
+        status: Any = None
+        for k in range(max(1, attempts)):
+            budget = (allowed_time - (time.monotonic() - t0)) / (max(1, attempts) - k)
+            ss = self._setup(start, goals, config, longest_valid_segment_fraction)
+            status = ss.solve(max(0.0, budget))
+            if status.getStatus() == S.EXACT_SOLUTION and ss.haveExactSolutionPath():
+                length = ss.getSolutionPath().length()
+                if length < best_length:
+                    best, best_length = ss, length
+        if best is None:
+            kind = status.getStatus()
             code = {
                 S.TIMEOUT: TIMED_OUT,
                 S.INVALID_START: START_STATE_INVALID,
                 S.INVALID_GOAL: GOAL_STATE_INVALID,
             }.get(kind, PLANNING_FAILED)
             return PlanResult(code, planning_time=time.monotonic() - t0, message=status.asString())
+        ss = best
         if simplify:
             remaining = allowed_time - (time.monotonic() - t0)
             if remaining > 0:
                 ss.simplifySolution(remaining)
+        space = ss.getStateSpace()
         path = ss.getSolutionPath()
         states = path.getStateCount()
         eventual = 1 + sum(
@@ -199,6 +223,7 @@ class JointSpacePlanner:
             path.interpolate(minimum_waypoint_count)
         else:
             path.interpolate()
+        n = len(self.joints)
         waypoints = []
         for i in range(path.getStateCount()):
             st = path.getState(i)

@@ -411,6 +411,7 @@ class PlanningPipeline:
             else 0.005,
             simplify=self.ompl.simplify_solutions,
             minimum_waypoint_count=self.ompl.minimum_waypoint_count,
+            attempts=req.num_planning_attempts,
         )
         if result.error_code != SUCCESS:
             return MotionResult(
