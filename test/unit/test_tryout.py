@@ -34,8 +34,13 @@ def test_needed_packages_follow_depends_and_find_but_stay_in_the_checkout(tmp_pa
         ['robot_description', 'gazebo_ros'],
         {'launch/a.launch': '<launch><include file="$(find robot_control)/x.launch"/></launch>'},
     )
-    package(tmp_path, 'robot_description')
+    package(
+        tmp_path,
+        'robot_description',
+        files={'urdf/r.xacro': '<mesh filename="package://robot_meshes/base.stl"/>'},
+    )
     package(tmp_path, 'robot_control')
+    package(tmp_path, 'robot_meshes')  # named by a mesh's package:// only
     package(tmp_path, 'robot_moveit_config', ['moveit_ros'])  # not needed: not built
     package(tmp_path / 'ignored', 'skipped')
     (tmp_path / 'ignored' / 'CATKIN_IGNORE').write_text('')
@@ -44,10 +49,16 @@ def test_needed_packages_follow_depends_and_find_but_stay_in_the_checkout(tmp_pa
         'robot_control',
         'robot_description',
         'robot_gazebo',
+        'robot_meshes',
         'robot_moveit_config',
     ]
     needed = workspace.needed_packages(found, 'robot_gazebo')
-    assert [p.name for p in needed] == ['robot_control', 'robot_description', 'robot_gazebo']
+    assert [p.name for p in needed] == [
+        'robot_control',
+        'robot_description',
+        'robot_gazebo',
+        'robot_meshes',
+    ]
     ws = tmp_path / 'ws'
     workspace.make_workspace(str(ws), needed)
     assert os.readlink(ws / 'src' / 'robot_gazebo') == str(tmp_path / 'robot_gazebo')

@@ -13,7 +13,7 @@ import shutil
 import subprocess
 import time
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Set, Tuple
 
 from _arm1sim.description import safe_xml
 
@@ -22,7 +22,9 @@ UNDERLAY = os.path.join(ARM1, '.ws', 'devel', 'setup.bash')
 VENV_PYTHON = os.path.join(ARM1, '.ws', 'venv', 'bin', 'python3')
 
 DEPEND_TAGS = ('depend', 'build_depend', 'exec_depend', 'run_depend', 'buildtool_depend')
-FIND_RE = re.compile(r'\$\(find\s+([A-Za-z0-9_]+)\)')
+# $(find pkg), and package://pkg/ (a mesh's package, resolved on the package path by
+# Gazebo: stretch_gazebo's URDF takes its meshes from stretch_description, not a dependency)
+FIND_RE = re.compile(r'\$\(find\s+([A-Za-z0-9_]+)\)|package://([A-Za-z0-9_]+)/')
 # Files whose $(find pkg) a bringup follows: launch files, xacro and URDF, yaml configs.
 SCANNED = ('.launch', '.xml', '.xacro', '.urdf', '.yaml', '.world')
 SKIP_DIRS = {'.git', 'build', 'devel', 'install', 'node_modules'}
@@ -83,8 +85,9 @@ def read_package(path: str) -> Package:
 
 
 def named_packages(pkg: Package) -> List[str]:
-    """Packages the package's launch, xacro, URDF and yaml files name with $(find ...)."""
-    names = set()
+    """Packages the package's launch, xacro, URDF and yaml files name with $(find ...) or
+    package://."""
+    names: Set[str] = set()
     for root, dirs, files in os.walk(pkg.path):
         dirs[:] = [d for d in dirs if d not in SKIP_DIRS and not d.startswith('.')]
         for fname in files:
@@ -95,7 +98,7 @@ def named_packages(pkg: Package) -> List[str]:
                 if os.path.getsize(path) > MAX_SCANNED_BYTES:
                     continue
                 with open(path, encoding='utf-8', errors='replace') as f:
-                    names.update(FIND_RE.findall(f.read()))
+                    names.update(a or b for a, b in FIND_RE.findall(f.read()))
             except OSError:
                 continue
     return sorted(names)
