@@ -21,6 +21,7 @@ import stat
 import sys
 
 from compat_gazebo_ros_launch import make_gazebo_ros_launch
+from compat_moveit_commander import make_moveit_commander
 from compat_stand_ins import PACKAGE_XML, STAND_INS, make_stand_ins
 
 ARM1 = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -211,6 +212,7 @@ def make(dest: str) -> None:
                 executable=True,
             )
     make_gazebo_ros_launch(dest, write)
+    make_moveit_commander(dest, write)
 
 
 if __name__ == '__main__':
