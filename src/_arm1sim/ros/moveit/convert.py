@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import copy
 import math
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import rospy
-from geometry_msgs.msg import Pose
+from geometry_msgs.msg import Pose, Quaternion
 from moveit_msgs.msg import (
     AttachedCollisionObject,
     CollisionObject,
@@ -105,8 +106,11 @@ def trajectory_msg(traj: Trajectory, frame: str) -> RobotTrajectory:
 
 
 def shapes_of(obj: CollisionObject) -> List[Shape]:
-    """The object's shapes, posed in the object's frame (its ``pose``)."""
+    """The object's shapes, posed in the object's frame (its ``pose``). A shape without a
+    pose of its own sits at the object's origin (planning_scene.cpp; moveit_commander's
+    add_box sends none)."""
     shapes = []
+    obj = _shape_poses_filled(obj)
     for prim, pose in zip(obj.primitives, obj.primitive_poses):
         kind = PRIMITIVES.get(prim.type)
         if kind is None:
@@ -128,6 +132,22 @@ def shapes_of(obj: CollisionObject) -> List[Shape]:
     if len(obj.primitives) != len(obj.primitive_poses) or len(obj.meshes) != len(obj.mesh_poses):
         raise ValueError("collision object '%s': shapes and poses differ in number" % obj.id)
     return shapes
+
+
+def _shape_poses_filled(obj: CollisionObject) -> CollisionObject:
+    def vectors(o: CollisionObject) -> list:
+        return [
+            (o.primitives, o.primitive_poses),
+            (o.meshes, o.mesh_poses),
+            (o.planes, o.plane_poses),
+        ]
+
+    if all(len(poses) >= len(shapes) for shapes, poses in vectors(obj)):
+        return obj
+    obj = copy.deepcopy(obj)
+    for shapes, poses in vectors(obj):
+        poses.extend(Pose(orientation=Quaternion(w=1.0)) for _ in range(len(shapes) - len(poses)))
+    return obj
 
 
 def object_msg(obj: SceneObject, frame: str) -> CollisionObject:
