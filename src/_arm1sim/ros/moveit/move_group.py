@@ -74,7 +74,7 @@ from ...planning.pipeline import MotionRequest, PipelineSettings, PlanningPipeli
 from ...planning.scene import CollisionWorld, SceneError, SceneObject
 from ..common.logs import route_core_logs
 from ..common.packages import find_package
-from . import convert
+from . import convert, fake_controller_manager  # noqa: F401  (registers the fake manager)
 from .controller_managers import make_manager
 from .execution import TrajectoryExecution
 
