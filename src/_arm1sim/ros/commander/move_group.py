@@ -843,20 +843,10 @@ class MoveGroupCommander:
             return False
         goal = PickupGoal(
             target_name=object_name,
-            group_name=self._group.name,
             end_effector=self._end_effector_name(),
-            support_surface_name=self._support_surface,
             possible_grasps=grasps,
-            allow_gripper_support_collision=bool(self._support_surface),
-            planner_id=self._planner_id,
-            allowed_planning_time=self._planning_time,
         )
-        if self._path_constraints:
-            goal.path_constraints = self._path_constraints
-        self._fill_options(goal, plan_only)
-        self._pick.send_goal(goal)
-        self._pick.wait_for_result()
-        return self._outcome(self._pick, 'Pickup').val == MoveItErrorCodes.SUCCESS
+        return self._manipulate(self._pick, goal, 'Pickup', plan_only)
 
     def place(self, object_name: str, location=None, plan_only: bool = False) -> bool:
         """Place through move_group's place action, when it offers one."""
@@ -886,21 +876,23 @@ class MoveGroupCommander:
                 'Parameter location must be a Pose, PoseStamped, PlaceLocation, list of '
                 'PoseStamped or list of PlaceLocation object'
             )
-        goal = PlaceGoal(
-            group_name=self._group.name,
-            attached_object_name=object_name,
-            support_surface_name=self._support_surface,
-            place_locations=locations,
-            allow_gripper_support_collision=bool(self._support_surface),
-            planner_id=self._planner_id,
-            allowed_planning_time=self._planning_time,
-        )
+        goal = PlaceGoal(attached_object_name=object_name, place_locations=locations)
+        return self._manipulate(self._place, goal, 'Place', plan_only)
+
+    def _manipulate(self, ac, goal, what: str, plan_only: bool) -> bool:
+        """A pickup or place goal with the group's settings (constructPickupGoal,
+        constructPlaceGoal), sent and waited for; True on success."""
+        goal.group_name = self._group.name
+        goal.support_surface_name = self._support_surface
+        goal.allow_gripper_support_collision = bool(self._support_surface)
+        goal.planner_id = self._planner_id
+        goal.allowed_planning_time = self._planning_time
         if self._path_constraints:
             goal.path_constraints = self._path_constraints
         self._fill_options(goal, plan_only)
-        self._place.send_goal(goal)
-        self._place.wait_for_result()
-        return self._outcome(self._place, 'Place').val == MoveItErrorCodes.SUCCESS
+        ac.send_goal(goal)
+        ac.wait_for_result()
+        return self._outcome(ac, what).val == MoveItErrorCodes.SUCCESS
 
     def _fill_options(self, goal, plan_only: bool) -> None:
         o = goal.planning_options
