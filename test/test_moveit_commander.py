@@ -10,6 +10,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 import unittest
 
 import moveit_commander
@@ -25,7 +26,7 @@ ARM = ['joint%d' % i for i in range(1, 7)]
 READY = [0.0, 0.4, 1.2, 0.0, 1.5, 0.0]  # the config's 'ready' state, where the arm starts
 JOINT_GOAL = [0.3, 0.6, 0.9, 0.2, 1.0, -0.3]
 CUBE = 0.03  # m, the picked box's edge
-DOWN = (1.0, 0.0, 0.0, 0.0)  # tool z pointing down (half a turn about x)
+DOWN = (0.0, 1.0, 0.0, 0.0)  # tool z pointing down (half a turn about y: joint6 at 0)
 
 
 def wait_for(predicate, timeout, poll=0.05):
@@ -66,6 +67,15 @@ class MoveItCommander(unittest.TestCase):
             stderr=subprocess.STDOUT,
             start_new_session=True,
         )
+        # the launch file sets the model and, with the world, /use_sim_time: read before
+        # init_node, which takes the clock it will keep
+        deadline = time.monotonic() + 60
+        while not rospy.has_param('/robot_description_semantic') or (
+            cls.sim and not rospy.has_param('/use_sim_time')
+        ):
+            assert time.monotonic() < deadline, 'the launch file never set the robot model'
+            assert cls.launch.poll() is None, 'roslaunch exited (%s)' % cls.launch.returncode
+            time.sleep(0.2)
         moveit_commander.roscpp_initialize(sys.argv)
         rospy.init_node('test_moveit_commander', anonymous=True)
         cls.robot = moveit_commander.RobotCommander()  # waits for nothing: the model only
@@ -217,14 +227,15 @@ class MoveItCommander(unittest.TestCase):
         self.assertTrue(self.arm.go(wait=True))
         self.arm.clear_pose_targets()
         self._line(here + (CUBE / 2,))
-        self.hand.set_named_target('close')
-        self.hand.go(wait=True)  # the fingers stop on the cube, short of 'close'
-        fingers = self.hand.get_current_joint_values()
-        if self.sim:
-            self.assertGreater(fingers[0], 0.015, 'the fingers did not close: %s' % fingers)
-            self.assertLess(fingers[0], 0.03, 'the fingers closed through the cube: %s' % fingers)
+        # attached first, with the hand's links as touch links: closing on it is then allowed
         self.scene.attach_box('tcp', 'cube', touch_links=self.robot.get_link_names(group='hand'))
         self.assertTrue(wait_for(lambda: 'cube' in self.scene.get_attached_objects(), 4))
+        self.hand.set_named_target('close')
+        self.hand.go(wait=True)  # on the simulated arm the fingers stop on the cube
+        fingers = self.hand.get_current_joint_values()
+        if self.sim:
+            self.assertGreater(fingers[0], 0.01, 'the fingers did not close: %s' % fingers)
+            self.assertLess(fingers[0], 0.03, 'the fingers closed through the cube: %s' % fingers)
         self._line(here + (0.12,))
         if self.sim:
             self.assertGreater(self._cube_z(), 0.08, 'the cube was not lifted')

@@ -232,7 +232,9 @@ def make_manager(plugin: str, params: Dict[str, Any]) -> Optional[ControllerMana
     given (MoveIt takes the only manager it has then)."""
     if not plugin:
         plugin = 'moveit_simple_controller_manager/MoveItSimpleControllerManager'
-    factory = MANAGERS.get(plugin)
+    # pluginlib takes a plugin's C++ type too: the Setup Assistant's
+    # ros_control_moveit_controller_manager.launch.xml names moveit_ros_control_interface::...
+    factory = MANAGERS.get(plugin) or MANAGERS.get(plugin.replace('::', '/', 1))
     if factory is None:
         rospy.logerr(
             "moveit_controller_manager '%s' is not available here (available: %s): "
