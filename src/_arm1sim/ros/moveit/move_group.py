@@ -89,6 +89,11 @@ KNOWN_ADAPTERS = {
     'default_planner_request_adapters/FixStartStatePathConstraints',
     'default_planner_request_adapters/ResolveConstraintFrames',
 }
+TIMING_ADAPTERS = {
+    'default_planner_request_adapters/AddTimeOptimalParameterization',
+    'default_planner_request_adapters/AddIterativeSplineParameterization',
+    'default_planner_request_adapters/AddRuckigTrajectorySmoothing',
+}
 STATE_WAIT = 1.0  # s, as MoveIt's wait for a complete current state
 
 
@@ -232,7 +237,13 @@ class MoveGroup:
             )
         adapters = str(private.get('request_adapters', '')).split()
         for a in adapters:
-            if a not in KNOWN_ADAPTERS:
+            if a in TIMING_ADAPTERS:
+                rospy.logwarn(
+                    "request adapter '%s': paths are timed by the iterative parabolic time "
+                    'parameterization (AddTimeParameterization) instead',
+                    a,
+                )
+            elif a not in KNOWN_ADAPTERS:
                 rospy.logwarn("request adapter '%s' is not applied (the default adapters are)", a)
         for solver in {
             k.get('kinematics_solver')
