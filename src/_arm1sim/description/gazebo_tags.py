@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Tuple
 
 from . import safe_xml
+from .inertia import correct_inertias
 from .lumping import TRUE_WORDS, Lumped, Pose, lump_fixed_joints, warn_moving_massless
 from .surface import NOT_APPLIED, Surface, SurfaceError, surface_from_tags
 from .urdf_model import RobotModel, UrdfError
@@ -141,10 +142,11 @@ def prepare_body(urdf_text: str, description: RobotModel, model: str) -> Tuple[s
     except ValueError as exc:
         raise UrdfError(str(exc)) from None
     warn_moving_massless(lumped, model)
+    inertias = correct_inertias(root, model)  # after lumping: what pybullet is handed
     links = [link.get('name', '') for link in root.findall('link')]
     options = link_options(description.gazebo_refs, lumped, links, model)
     short = max(len(line) for line in urdf_text.splitlines() or ['']) <= PYBULLET_LINE
-    if short and not (lumped.frames or lumped.weightless):
+    if short and not (lumped.frames or lumped.weightless or inertias):
         return urdf_text, options
     _break_lines(root)
     return ET.tostring(root, encoding='unicode'), options
