@@ -267,3 +267,68 @@ def test_the_hardware_interface_never_writes_a_mimic_follower():
     assert follower not in indices
     assert robot.joint_index['left_finger_joint'] in indices
     assert hw.handles['right_finger_joint'].effort == 0.0
+
+
+# ------------------------------------------------ a four-bar gripper (Robotiq 2F-85's kinematics)
+FOURBAR = os.path.join(REPO_ROOT, 'test', 'config', 'fourbar_gripper.urdf')
+FOURBAR_FOLLOWERS = {
+    'left_inner_finger_joint',
+    'left_inner_knuckle_joint',
+    'right_outer_knuckle_joint',
+    'right_inner_finger_joint',
+    'right_inner_knuckle_joint',
+}
+
+
+def test_a_follower_declared_twice_is_one_mimic_the_plugins():
+    """Gazebo classic drops a URDF <mimic> (sdformat's URDF reader has none): with both, the
+    plugin is what acts. Here the plugin's multiplier and offset win over the <mimic>'s."""
+    both = urdf(
+        '<mimic joint="lead" multiplier="-2" offset="0.3"/>',
+        PLUGIN % 'libroboticsgroup_gazebo_mimic_joint_plugin.so',
+    )
+    (m,) = parse_urdf(both).mimics
+    assert (m.multiplier, m.offset, m.max_effort) == (0.5, 0.2, 3.0)
+
+
+def test_the_fourbars_five_followers_push_with_their_effort_limit():
+    """Declared by <mimic> and by the plugin without <maxEffort>: the plugin's default, the
+    follower's effort limit (Joint::GetEffortLimit), caps each."""
+    from _arm1sim.sim.simulation import mimic_links
+
+    with open(FOURBAR) as f:
+        model = parse_urdf(f.read())
+    assert {m.follower for m in model.mimics} == FOURBAR_FOLLOWERS
+    assert {(m.leader, m.multiplier, m.offset, m.max_effort) for m in model.mimics} == {
+        ('drive_joint', 1.0, 0.0, None)
+    }
+    assert {force for _, _, _, _, force, _ in mimic_links(model)} == {100.0}
+
+
+def test_the_fourbar_closes_on_a_box_and_its_leader_holds_still(sim):
+    """Followers on the base, on the leader's child and on a follower's child, a PD leader
+    (p 10, d 0.1, 10 N m at most) closing in 0.5 s past a 5 cm box: the pads stop on it, every
+    follower keeps the leader's angle, and the leader does not run away."""
+    with open(FOURBAR) as f:
+        model = sim.spawn_urdf('fourbar', f.read())
+    box = (
+        '<robot name="box"><link name="box"><inertial><mass value="0.1"/><inertia ixx="4e-5" '
+        'ixy="0" ixz="0" iyy="4e-5" iyz="0" izz="4e-5"/></inertial><collision><geometry>'
+        '<box size="0.05 0.05 0.05"/></geometry></collision></link></robot>'
+    )
+    sim.spawn_urdf('box', box, position=(0, 0, 0.026))
+    robot = model.robot
+    drive, lift = robot.indices(['drive_joint', 'lift_joint'])
+    fastest = 0.0
+    for k in range(1500):
+        (q, v), (z, vz) = robot.read([drive, lift])
+        fastest = max(fastest, abs(v))
+        goal = min(0.4, k * 0.0008)  # reached in 0.5 s, as a trajectory would
+        effort = max(-10.0, min(10.0, 10.0 * (goal - q) - 0.1 * v))
+        robot.apply_efforts([drive, lift], [effort, 3000.0 * -z - 100.0 * vz + 7.0])
+        sim.step()
+    names = ['drive_joint'] + sorted(FOURBAR_FOLLOWERS)
+    lead, *followers = positions(model, names)
+    assert lead == pytest.approx(0.353, abs=0.005)  # on the box, short of the goal's 0.4
+    assert followers == pytest.approx([lead] * 5, abs=0.005)
+    assert fastest < 3.0
