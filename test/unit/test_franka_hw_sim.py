@@ -286,17 +286,37 @@ def test_position_commands_go_through_the_motion_generator_pids_and_stopping_hol
     assert positions(model, ARM) == pytest.approx(held, abs=0.01)
 
 
-def test_a_mimic_finger_gets_no_effort_from_the_hardware():
-    """franka_description's finger_joint2 has a URDF <mimic> of finger_joint1: the mimic drives
-    it (issue 21: a follower gets no effort from the hardware interface), so an effort
-    command for it is not applied on top of the mimic's motor."""
+MIMIC_PLUGIN = (
+    '<gazebo><plugin name="finger_mimic" '
+    'filename="libroboticsgroup_upatras_gazebo_mimic_joint_plugin.so">'
+    '<joint>toy_finger_joint1</joint><mimicJoint>toy_finger_joint2</mimicJoint></plugin></gazebo>'
+)
+
+
+@pytest.mark.parametrize('declared', ['urdf', 'plugin'])
+def test_a_mimic_finger_is_driven_as_gazebo_drives_it(declared):
+    """franka_description's finger_joint2 has a URDF <mimic> of finger_joint1, which Gazebo 11
+    ignores (sdformat 9 reads none): FrankaHWSim drops it and applies the gripper's effort to
+    both fingers (an effort of 50 N opens finger 2 to its stop). A mimic plugin acts in Gazebo:
+    its follower stays a mimic and gets no effort from the hardware (issue 21), so 50 N is
+    not applied on top of the mimic's motor."""
     from _arm1sim.control.hardware_interface import EFFORT_JOINT_INTERFACE
 
     sim = Simulation(read_world(WORLD_FILE))
-    text = toy_panda.urdf('toy').replace(
-        '<axis xyz="0 -1 0"/>', '<axis xyz="0 -1 0"/><mimic joint="toy_finger_joint1"/>'
-    )
-    assert '<mimic' in text
+    text = toy_panda.urdf('toy')
+    if declared == 'urdf':
+        marker = '<joint name="toy_finger_joint2" type="prismatic">'
+        head, joint2 = text.split(marker)
+        text = (
+            head
+            + marker
+            + joint2.replace(
+                '<axis xyz="0 -1 0"/>', '<axis xyz="0 -1 0"/><mimic joint="toy_finger_joint1"/>', 1
+            )
+        )
+        assert text.count('<mimic') == 1
+    else:
+        text = text.replace('</robot>', MIMIC_PLUGIN + '</robot>')
     ros = FakeRos(dict(GAINS))
     model = sim.spawn_urdf(
         'toy',
@@ -308,14 +328,18 @@ def test_a_mimic_finger_gets_no_effort_from_the_hardware():
         sim.set_model_configuration('toy', ARM + FINGERS, POSE + [0.02, 0.02])
         model.hw.init_sim(ros.node_handle('/'), '/')
         follower = model.hw.get_handle(FINGERS[1], EFFORT_JOINT_INTERFACE, '/test')
-        follower.command = 50.0  # would push it open at 50 N, were it applied
+        follower.command = 50.0  # pushes it open at 50 N, when applied
         run(sim, 0.5)
         index = model.robot.indices([FINGERS[1]])[0]
         motor = p.getJointState(model.robot.body, index, physicsClientId=model.robot.client)[3]
-        # the mimic's motor holds the follower at its leader without fighting 50 N (what it
-        # does push: the free leader's and follower's own drift as the arm holds its pose)
-        assert abs(motor) < 5.0
         leader, follower_q = positions(model, FINGERS)
-        assert follower_q == pytest.approx(leader, abs=1e-4)
+        if declared == 'urdf':
+            assert model.robot.mimics == [] and follower.effort == pytest.approx(50.0)
+            assert follower_q == pytest.approx(0.04, abs=1e-3)  # at its stop
+        else:
+            # the mimic's motor holds the follower at its leader without fighting 50 N (what
+            # it does push: the free leader's and follower's own drift as the arm holds)
+            assert len(model.robot.mimics) == 1 and abs(motor) < 5.0
+            assert follower_q == pytest.approx(leader, abs=1e-4)
     finally:
         sim.close()

@@ -72,6 +72,7 @@ class Mimic:
     offset: float = 0.0
     max_effort: Optional[float] = None  # None: the follower's effort limit
     sensitiveness: float = 0.0  # acts only when |target - position| >= it
+    plugin: bool = False  # roboticsgroup's plugin (else a URDF <mimic>, which Gazebo 11 ignores)
 
 
 @dataclass
@@ -426,6 +427,7 @@ def _mimic_plugin(p: ET.Element) -> Mimic:
         number('offset', 0.0) or 0.0,
         number('maxEffort', None),
         abs(number('sensitiveness', 0.0) or 0.0),
+        plugin=True,
     )
 
 

@@ -44,6 +44,7 @@ from ...control.pid import Pid, PidConfigError
 from ...description.urdf_model import RobotModel
 from ...physics.body_dynamics import BodyDynamics, Pose, homogeneous, pose_of
 from ...physics.robot import Robot
+from ...sim.simulation import mimic_links
 from .interfaces import (
     FRANKA_MODEL_INTERFACE,
     FRANKA_STATE_INTERFACE,
@@ -204,9 +205,15 @@ class FrankaHWSim:
         self._by_name = {j.name: j for j in self._joints}
         self.arm = [self._by_name[n] for n in state_joints]
         self._indices = [j.index for j in self._joints]
-        # A mimic follower (franka_description's finger_joint2 has a URDF <mimic>) is read but
-        # never written: physics.mimic drives it, an effort from here would fight its motor.
-        followers = {m.follower for m in description.mimics}
+        # franka_description's finger_joint2 has a URDF <mimic> of finger_joint1. Gazebo 11
+        # reads none (sdformat 9's URDF parser has no such element), so there both fingers
+        # are FrankaGripperSim's; the stand-in simulates a URDF <mimic> for other robots, and
+        # drops those on this hardware's joints, as Gazebo does. A mimic plugin's follower
+        # stays a mimic (the plugin acts in Gazebo too) and is read but never written.
+        dropped = {m.follower for m in description.mimics if not m.plugin and m.follower in joints}
+        if dropped:
+            robot.set_mimics([link for link in mimic_links(description) if link[0] not in dropped])
+        followers = {m.follower for m in description.mimics} - dropped
         self._written = [j for j in self._joints if j.name not in followers]
         self._written_indices = [j.index for j in self._written]
         try:
