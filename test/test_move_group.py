@@ -46,6 +46,7 @@ from moveit_msgs.srv import (
 )
 from sensor_msgs.msg import JointState
 from shape_msgs.msg import SolidPrimitive
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rostest_util import Recorder, WorldTestCase, wait_for, wait_for_controllers  # noqa: E402
@@ -126,11 +127,11 @@ class MoveGroupTest(WorldTestCase):
         self.assertEqual(reply.error_code.val, MoveItErrorCodes.SUCCESS)
         return reply.pose_stamped[0].pose
 
-    def test_1_moveit_names_and_types(self):
+    def test_01_moveit_names_and_types(self):
         for name, kind in SERVICES.items():
             self.assertEqual(rosservice.get_service_type('/' + name), kind)
 
-    def test_2_joint_goal_planned_and_executed(self):
+    def test_02_joint_goal_planned_and_executed(self):
         since = len(self.display.since(0))
         self.move.send_goal(joint_goal('toy_arm', ARM, GOAL))
         self.assertTrue(self.move.wait_for_result(rospy.Duration(90)))
@@ -145,14 +146,14 @@ class MoveGroupTest(WorldTestCase):
         self.assertTrue(wait_for(lambda: np.max(np.abs(self.position(ARM) - GOAL)) < 0.03, 10))
         self.assertGreater(len(self.display.since(0)), since)
 
-    def test_3_named_hand_state_through_the_gripper_controller(self):
+    def test_03_named_hand_state_through_the_gripper_controller(self):
         names = ['toy_finger_joint1', 'toy_finger_joint2']
         self.move.send_goal(joint_goal('hand', names, [0.03, 0.03]))
         self.assertTrue(self.move.wait_for_result(rospy.Duration(60)))
         self.assertEqual(self.move.get_result().error_code.val, MoveItErrorCodes.SUCCESS)
         self.assertTrue(wait_for(lambda: np.all(np.abs(self.position(names) - 0.03) < 0.005), 10))
 
-    def test_4_pose_goal_ik_and_fk_agree(self):
+    def test_04_pose_goal_ik_and_fk_agree(self):
         target = self.link_pose('toy_link8', ARM, READY)
         ik = GetPositionIKRequest()
         ik.ik_request.group_name = 'toy_arm'
@@ -203,7 +204,7 @@ class MoveGroupTest(WorldTestCase):
             2e-3,
         )
 
-    def test_5_box_added_in_collision_attached_detached_removed(self):
+    def test_05_box_added_in_collision_attached_detached_removed(self):
         scene = rospy.ServiceProxy('get_planning_scene', GetPlanningScene)
         hand = self.link_pose('toy_hand')
         co = CollisionObject(id='box', operation=CollisionObject.ADD)
@@ -256,7 +257,7 @@ class MoveGroupTest(WorldTestCase):
         pub.publish(co)
         self.assertTrue(wait_for(lambda: 'box' not in world_names(), 10))
 
-    def test_6_cartesian_path_executed(self):
+    def test_06_cartesian_path_executed(self):
         start = self.link_pose('toy_link8')
         down = Pose(position=start.position, orientation=start.orientation)
         down.position.z -= 0.05
@@ -283,7 +284,7 @@ class MoveGroupTest(WorldTestCase):
             )
         )
 
-    def test_7_trajectory_starting_away_from_the_arm_is_refused(self):
+    def test_07_trajectory_starting_away_from_the_arm_is_refused(self):
         req = GetMotionPlanRequest()
         r = req.motion_plan_request
         r.group_name = 'toy_arm'
@@ -307,7 +308,7 @@ class MoveGroupTest(WorldTestCase):
         self.assertTrue(self.execute.wait_for_result(rospy.Duration(30)))
         self.assertEqual(self.execute.get_result().error_code.val, MoveItErrorCodes.CONTROL_FAILED)
 
-    def test_8_bad_requests_answered_and_the_node_keeps_serving(self):
+    def test_08_bad_requests_answered_and_the_node_keeps_serving(self):
         ik = GetPositionIKRequest()
         ik.ik_request.group_name = 'toy_arm'
         ik.ik_request.ik_link_name = 'no_such_link'
@@ -328,7 +329,7 @@ class MoveGroupTest(WorldTestCase):
         )
         self.link_pose('toy_link8')  # still answering
 
-    def test_9_ros_control_manager_executes_through_the_running_controllers(self):
+    def test_09_ros_control_manager_executes_through_the_running_controllers(self):
         rospy.wait_for_service('/rc/plan_kinematic_path', 60)
         now = self.position(ARM)
         target = list(now)
@@ -356,6 +357,111 @@ class MoveGroupTest(WorldTestCase):
         self.assertTrue(client.wait_for_result(rospy.Duration(60)))
         self.assertEqual(client.get_result().error_code.val, MoveItErrorCodes.SUCCESS)
         self.assertTrue(wait_for(lambda: abs(self.position(ARM)[0] - target[0]) < 0.03, 10))
+
+    def test_10_pickup_and_place_actions(self):
+        from geometry_msgs.msg import Vector3
+        from moveit_msgs.msg import (
+            Grasp,
+            PickupAction,
+            PickupGoal,
+            PlaceAction,
+            PlaceGoal,
+            PlaceLocation,
+        )
+
+        scene = rospy.ServiceProxy('get_planning_scene', GetPlanningScene)
+        here, there = (0.4, 0.0, 0.3), (0.4, 0.2, 0.3)
+        co = CollisionObject(id='cube', operation=CollisionObject.ADD)
+        co.header.frame_id = 'world'
+        co.pose.position.x, co.pose.position.y, co.pose.position.z = here
+        co.pose.orientation.w = 1.0
+        co.primitives.append(SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.03] * 3))
+        rospy.Publisher('collision_object', CollisionObject, queue_size=10, latch=True).publish(co)
+        geometry = PlanningSceneComponents(components=PlanningSceneComponents.WORLD_OBJECT_GEOMETRY)
+
+        def world():
+            return {o.id: o for o in scene(components=geometry).scene.world.collision_objects}
+
+        self.assertTrue(wait_for(lambda: 'cube' in world(), 10))
+        flange = self.link_pose('toy_link8', ARM, READY).orientation  # the hand pointing down
+        fingers = ['toy_finger_joint1', 'toy_finger_joint2']
+
+        def posture(width):
+            return JointTrajectory(
+                joint_names=fingers,
+                points=[
+                    JointTrajectoryPoint(
+                        positions=[width, width], time_from_start=rospy.Duration(1.0)
+                    )
+                ],
+            )
+
+        def down_up(approach, retreat):
+            for motion, sign in ((approach, -1.0), (retreat, 1.0)):
+                motion.direction.header.frame_id = 'world'
+                motion.direction.vector = Vector3(0.0, 0.0, sign)
+                motion.desired_distance, motion.min_distance = 0.08, 0.05
+
+        grasp = Grasp(
+            id='top',
+            grasp_quality=1.0,
+            pre_grasp_posture=posture(0.035),
+            grasp_posture=posture(0.012),
+        )
+        grasp.grasp_pose.header.frame_id = 'world'
+        grasp.grasp_pose.pose.position.x, grasp.grasp_pose.pose.position.y = here[:2]
+        grasp.grasp_pose.pose.position.z = here[2] + 0.0884  # the finger pads about the cube
+        grasp.grasp_pose.pose.orientation = flange
+        down_up(grasp.pre_grasp_approach, grasp.post_grasp_retreat)
+        pick = actionlib.SimpleActionClient('pickup', PickupAction)
+        self.assertTrue(pick.wait_for_server(rospy.Duration(30)))
+        pick.send_goal(
+            PickupGoal(
+                target_name='cube',
+                group_name='toy_arm',
+                possible_grasps=[grasp],
+                allowed_planning_time=10.0,
+            )
+        )
+        self.assertTrue(pick.wait_for_result(rospy.Duration(120)))
+        result = pick.get_result()
+        self.assertEqual(result.error_code.val, MoveItErrorCodes.SUCCESS)
+        self.assertEqual(
+            result.trajectory_descriptions, ['plan', 'pre_grasp', 'approach', 'grasp', 'retreat']
+        )
+        self.assertNotIn('cube', world())
+        attached = PlanningSceneComponents(
+            components=PlanningSceneComponents.ROBOT_STATE_ATTACHED_OBJECTS
+        )
+        held = scene(components=attached).scene.robot_state.attached_collision_objects
+        self.assertEqual([(a.object.id, a.link_name) for a in held], [('cube', 'toy_link8')])
+        location = PlaceLocation(id='left', quality=1.0, post_place_posture=posture(0.035))
+        location.place_pose.header.frame_id = 'world'
+        (
+            location.place_pose.pose.position.x,
+            location.place_pose.pose.position.y,
+            location.place_pose.pose.position.z,
+        ) = there
+        location.place_pose.pose.orientation.w = 1.0
+        down_up(location.pre_place_approach, location.post_place_retreat)
+        place = actionlib.SimpleActionClient('place', PlaceAction)
+        self.assertTrue(place.wait_for_server(rospy.Duration(30)))
+        place.send_goal(
+            PlaceGoal(
+                attached_object_name='cube',
+                group_name='toy_arm',
+                place_locations=[location],
+                allowed_planning_time=10.0,
+            )
+        )
+        self.assertTrue(place.wait_for_result(rospy.Duration(120)))
+        self.assertEqual(place.get_result().error_code.val, MoveItErrorCodes.SUCCESS)
+        cube = world().get('cube')
+        self.assertIsNotNone(cube)
+        got = cube.pose.position
+        self.assertLess(
+            np.linalg.norm([got.x - there[0], got.y - there[1], got.z - there[2]]), 0.02
+        )
 
 
 if __name__ == '__main__':

@@ -100,13 +100,14 @@ class TrajectoryExecution:
                 )
         return True, ''
 
-    def execute(self, trajectory: JointTrajectory) -> Tuple[int, str]:
-        """MoveIt's error code and a message."""
+    def execute(self, trajectory: JointTrajectory, validate: bool = True) -> Tuple[int, str]:
+        """MoveIt's error code and a message. ``validate=False``: a later part of one
+        execution (MoveIt checks only the first part's start against the current state)."""
         if not trajectory.points:
             return SUCCESS, 'empty trajectory'
         if self.manager is None:
             return CONTROL_FAILED, 'no controller manager'
-        ok, message = self.check_start(trajectory)
+        ok, message = self.check_start(trajectory) if validate else (True, '')
         if not ok:
             rospy.logerr(message)
             return CONTROL_FAILED, message

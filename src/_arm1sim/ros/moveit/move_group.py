@@ -33,6 +33,8 @@ from moveit_msgs.msg import (
     MoveGroupFeedback,
     MoveGroupResult,
     MoveItErrorCodes,
+    PickupAction,
+    PlaceAction,
     PlannerInterfaceDescription,
     PlannerParams,
     PlanningScene,
@@ -77,6 +79,7 @@ from ..common.packages import find_package
 from . import convert, fake_controller_manager  # noqa: F401  (registers the fake manager)
 from .controller_managers import make_manager
 from .execution import TrajectoryExecution
+from .pick_place import PickPlace
 
 log = logging.getLogger(__name__)
 
@@ -195,6 +198,16 @@ class MoveGroup:
         self.exec_server.register_preempt_callback(self.execution.stop)
         self.move_server.start()
         self.exec_server.start()
+        self.pick_place = PickPlace(self)
+        self.pick_server = actionlib.SimpleActionServer(
+            'pickup', PickupAction, self.act_pickup, auto_start=False
+        )
+        self.place_server = actionlib.SimpleActionServer(
+            'place', PlaceAction, self.act_place, auto_start=False
+        )
+        for server in (self.pick_server, self.place_server):
+            server.register_preempt_callback(self.execution.stop)
+            server.start()
         self.publish_scene()
         rospy.loginfo(
             'move_group (arm1 stand-in): %s with groups %s, planning frame %s. '
@@ -616,6 +629,14 @@ class MoveGroup:
         result.error_code.val = code
         self.exec_server.publish_feedback(ExecuteTrajectoryFeedback(state='IDLE'))
         self._finish(self.exec_server, code, result, message)
+
+    def act_pickup(self, goal) -> None:
+        result, message = self.pick_place.pick(goal)
+        self._finish(self.pick_server, result.error_code.val, result, message)
+
+    def act_place(self, goal) -> None:
+        result, message = self.pick_place.place(goal)
+        self._finish(self.place_server, result.error_code.val, result, message)
 
     @staticmethod
     def _finish(server, code: int, result, message: str) -> None:
