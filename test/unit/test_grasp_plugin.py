@@ -14,7 +14,7 @@ from _arm1sim.description.gazebo_plugins import model_plugins
 from _arm1sim.description.sdf_world import read_world
 from _arm1sim.description.urdf_model import parse_urdf
 from _arm1sim.physics.grasp import GraspLogic, GraspParams, opposing
-from _arm1sim.sim.grasp_plugin import grasp_params
+from _arm1sim.sim.plugins.grasp import grasp_params
 from _arm1sim.sim.simulation import Simulation
 
 LEFT, RIGHT = (0.0, -2.0, 0.0), (0.0, 2.0, 0.0)  # forces on the box from two fingers

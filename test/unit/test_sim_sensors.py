@@ -10,7 +10,7 @@ from _arm1sim.description.gazebo_plugins import sensor_specs, topic
 from _arm1sim.description.sdf_world import read_world
 from _arm1sim.description.urdf_model import UrdfError, parse_urdf
 from _arm1sim.physics.sim_sensor import SimSensor
-from _arm1sim.sim import sensor_plugins
+from _arm1sim.sim.plugins import PLUGINS, PluginType
 from _arm1sim.sim.simulation import Simulation, SpawnError
 
 PLUGIN = 'libarm1_test_counter.so'
@@ -44,7 +44,7 @@ def registered(monkeypatch):
         built.append(s)
         return s
 
-    monkeypatch.setitem(sensor_plugins.SENSOR_PLUGINS, PLUGIN, build)
+    monkeypatch.setitem(PLUGINS, PLUGIN, PluginType(PLUGIN, build_sensor=build))
     return built
 
 
@@ -99,7 +99,7 @@ def test_a_failing_builder_fails_the_spawn_and_leaves_nothing(sim, monkeypatch):
     def build(*args):
         raise UrdfError("sensor 'tick': broken")
 
-    monkeypatch.setitem(sensor_plugins.SENSOR_PLUGINS, PLUGIN, build)
+    monkeypatch.setitem(PLUGINS, PLUGIN, PluginType(PLUGIN, build_sensor=build))
     with pytest.raises(SpawnError, match="cannot spawn 'probe': sensor 'tick': broken"):
         sim.spawn_urdf('probe', probe_urdf())
     assert 'probe' not in sim.models and sim._sensors == []

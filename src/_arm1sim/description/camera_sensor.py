@@ -59,6 +59,11 @@ class CameraSensor:
     use_depth_16uc1: bool = False  # openni_kinect's useDepth16UC1Format: millimetres, 0 outside
 
     @property
+    def plugin_filename(self) -> str:
+        """The plugin that publishes it (sim/plugins' registry key)."""
+        return self.depth_plugin or CAMERA_PLUGIN
+
+    @property
     def encoding(self) -> str:
         return ENCODINGS[self.format][0]
 

@@ -1,6 +1,6 @@
 """The ``<sensor>`` and ``<plugin>`` elements of a URDF's ``<gazebo>`` blocks, as plain records.
 
-ROS-free and pybullet-free. Each sensor implementation (sim.sensor_plugins) reads
+ROS-free and pybullet-free. Each plugin implementation (sim/plugins/) reads
 its own parameters from a ``SensorSpec`` or ``PluginSpec`` with the helpers here,
 so that every plugin spells defaults, numbers and poses the same way.
 """
@@ -12,18 +12,17 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable, List, Optional, Set
 
 from ..vendors import robot_sim_types
-from .camera_sensor import CAMERA_PLUGIN, DEPTH_PLUGINS
 from .names import legal_ros_name, shown
 from .sdf_values import ZERO_POSE, Pose, flag, number, pose
-from .urdf_model import CONTROL_PLUGIN, MIMIC_PLUGINS, RobotModel, UrdfError
+from .urdf_model import CONTROL_PLUGIN, RobotModel, UrdfError
 
 log = logging.getLogger('_arm1sim.physics')
 
 
-# Plugins implemented outside sim.sensor_plugins' tables (whose keys count as handled too):
-# the rest are named in a warning at spawn.
 DEFAULT_ROBOT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
-HANDLED_PLUGINS: Set[str] = {CONTROL_PLUGIN, *MIMIC_PLUGINS, CAMERA_PLUGIN, *DEPTH_PLUGINS}
+# The plugin implemented outside sim/plugins' registry (whose file names count as handled
+# too): the rest are named in a warning at spawn.
+HANDLED_PLUGINS: Set[str] = {CONTROL_PLUGIN}
 
 
 @dataclass

@@ -22,13 +22,9 @@ from typing import Any, Iterable, List, Optional, Tuple
 import numpy as np
 import pybullet as p
 
-from ..description.gazebo_plugins import PluginSpec, SensorSpec, topic
-from ..description.limits import Limits
-from ..description.ray_sensor import PLUGIN_SENSOR_TYPE, LaserPlugin, RaySpec, laser_plugin
-from ..description.ray_sensor import ray_spec as parse_ray_spec
-from ..description.urdf_model import UrdfError
+from ..description.ray_sensor import LaserPlugin, RaySpec
 from .robot import Robot
-from .sim_sensor import Quat, SimSensor, Vec3, compose, pose_of
+from .sim_sensor import Quat, SimSensor, Vec3, compose
 
 log = logging.getLogger('_arm1sim.physics')
 
@@ -199,67 +195,9 @@ class Laser(SimSensor):
         return LaserReading(ranges, np.zeros(len(ranges)))
 
 
-def _sensor_link(robot: Robot, sensor: SensorSpec) -> Optional[Tuple[str, Frame]]:
-    """The pybullet link carrying the sensor's link frame and its offset there (a link merged
-    into its parent by fixed-joint lumping lives on in the parent)."""
-    if sensor.link in robot.link_index:
-        return sensor.link, ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
-    resolve = getattr(robot, 'lumped_link', None)
-    found = resolve(sensor.link) if resolve is not None else None
-    if found is None:
-        return None
-    parent, offset = found
-    return parent, (tuple(offset[0]), tuple(offset[1]))
-
-
 def ray_casts_per_second(sensors: Iterable[Any], every_step_hz: float) -> float:
     """Rays a second of sim time the lasers among ``sensors`` cast while wanted (a rate of 0,
     every step, counted as ``every_step_hz``)."""
     return sum(
         s.spec.rays * (s.update_rate or every_step_hz) for s in sensors if isinstance(s, Laser)
     )
-
-
-def build_laser(
-    model: str, sensor: SensorSpec, plugin: PluginSpec, robot: Robot, ns: str, limits: Limits
-) -> Optional[Laser]:
-    """gazebo_ros_laser (ray) or gazebo_ros_gpu_laser (gpu_ray). A plugin in a sensor of the
-    other type does not load in Gazebo (its Load throws): warned and left out here too."""
-    wanted_type = PLUGIN_SENSOR_TYPE.get(plugin.filename, 'ray')
-    if sensor.type != wanted_type:
-        log.warning(
-            "model '%s': %s is not loaded, as in Gazebo: it needs a sensor of type '%s', not '%s'",
-            model,
-            plugin.where,
-            wanted_type,
-            sensor.type,
-        )
-        return None
-    spec = parse_ray_spec(sensor, limits)
-    found = _sensor_link(robot, sensor)
-    if found is None:
-        raise UrdfError('%s: the link is not in the model' % sensor.where)
-    link, offset = found
-    laser = Laser(
-        model,
-        sensor.name,
-        robot,
-        link,
-        compose(offset, pose_of(sensor.pose)),
-        spec,
-        sensor.update_rate,
-    )
-    laser.sensor_type = sensor.type
-    laser.plugin = laser_plugin(plugin, ns)
-    name = laser.plugin.topic_name
-    laser.topic = topic(laser.plugin.namespace, name) if name else ''
-    if spec.vertical_range_count > 1:
-        log.warning(
-            "model '%s': %s has %d vertical layers: its LaserScan carries all of them one after "
-            'another (%d ranges) with one layer\'s angles, as gazebo_ros_laser publishes them',
-            model,
-            sensor.where,
-            spec.vertical_range_count,
-            spec.vertical_range_count * spec.range_count,
-        )
-    return laser

@@ -30,6 +30,9 @@ class SimSensor:
     topic = ''
     frame_id = ''
     namespace = ''
+    # The Gazebo plugin file it stands for (sim.plugins' registry key), set by its builder's
+    # caller: the ROS layer finds its publisher by it.
+    plugin_filename = ''
 
     def __init__(self, model: str, name: str, update_rate: float) -> None:
         self.model, self.name = model, name

@@ -37,8 +37,9 @@ from ..physics.robot import Robot, RobotLoadError
 from ..physics.sensor_manager import Camera, SensorManager
 from ..physics.sim_sensor import SimSensor
 from ..physics.world import World
+from .plugins import build_sensors
+from .plugins.mimic import mimic_links
 from .robot_hw_sims import make_robot_hw_sim
-from .sensor_plugins import build_sensors
 
 
 class SpawnError(ValueError):
@@ -365,17 +366,6 @@ class Simulation:
         self.sensors.close()
         self.world.close()
         self._tmp.cleanup()
-
-
-def mimic_links(description: RobotModel) -> List[Tuple[str, str, float, float, float, float]]:
-    """The description's mimics as Robot.set_mimics takes them; the force cap is maxEffort,
-    else the follower's effort limit, else (no limit given) a stiff 1000."""
-    links = []
-    for m in description.mimics:
-        limit = description.joints[m.follower].limits.effort
-        force = m.max_effort if m.max_effort is not None else limit if limit else 1000.0
-        links.append((m.follower, m.leader, m.multiplier, m.offset, abs(force), m.sensitiveness))
-    return links
 
 
 def _no_packages(name: str) -> str:

@@ -1,45 +1,41 @@
-"""The ROS side of the physics sensors (physics.sim_sensor): which plugin publishes each.
+"""The ROS side of a model's plugins: the publisher each registered plugin names.
 
-``ROS_SENSOR_PLUGINS`` maps a SimSensor class to what publishes it
-(plugins/sensor_publisher.py's SensorPublisher, mostly); each sensor implementation adds one line.
+sim/plugins' registry keys each plugin by its file name and names its publisher
+(``module:factory`` in this room); what it built (a camera of physics.sensor_manager, a
+physics.sim_sensor.SimSensor) carries the file name, and gets that factory's plugin here.
 """
 
 from __future__ import annotations
 
+import importlib
 import logging
-from typing import Any, Callable, Dict, Optional, Type
+from typing import Any, Callable, Optional
 
-from ...physics.diff_drive import DiffDrive
-from ...physics.grasp import GraspFix
-from ...physics.laser import Laser
-from ...physics.sim_sensor import SimSensor
+from ...sim.plugins import PLUGINS
 from ...sim.simulation import Model, Plugin
-from . import diff_drive_plugin, grasp_plugin, laser_plugin
-from . import state_sensor_plugins as state
 
 log = logging.getLogger('rosout')
 
-
 PluginFactory = Callable[[Any], Plugin]
-ROS_SENSOR_PLUGINS: Dict[Type[SimSensor], PluginFactory] = {}
-ROS_SENSOR_PLUGINS[state.ImuSensor] = state.imu_sensor_publisher
-ROS_SENSOR_PLUGINS[state.ImuModelPlugin] = state.imu_plugin_publisher
-ROS_SENSOR_PLUGINS[state.P3d] = state.p3d_publisher
-ROS_SENSOR_PLUGINS[state.ContactSensor] = state.bumper_publisher
-ROS_SENSOR_PLUGINS[state.ForceTorque] = state.ft_publisher
-ROS_SENSOR_PLUGINS[Laser] = laser_plugin.laser_publisher
-ROS_SENSOR_PLUGINS[DiffDrive] = diff_drive_plugin.diff_drive_plugin
-ROS_SENSOR_PLUGINS[GraspFix] = grasp_plugin.grasp_event_publisher
+
+
+def publisher(filename: str) -> Optional[PluginFactory]:
+    """The factory of the ROS publisher registered for a plugin file; None for none."""
+    entry = PLUGINS.get(filename)
+    if entry is None or not entry.publisher:
+        return None
+    module, _, factory = entry.publisher.partition(':')
+    found: PluginFactory = getattr(importlib.import_module('.' + module, __package__), factory)
+    return found
 
 
 def attach_sensor_plugins(model: Model) -> None:
-    """Give each of the model's physics sensors its ROS publisher (in ``model.plugins``)."""
+    """Give each of the model's cameras and physics sensors its ROS publisher (in
+    ``model.plugins``, so that delete_model releases it)."""
+    for camera in model.cameras:
+        model.plugins.append(_factory(camera.sensor.plugin_filename)(camera))
     for sensor in model.sensors:
-        factory: Optional[PluginFactory] = None
-        for cls in type(sensor).__mro__:
-            factory = ROS_SENSOR_PLUGINS.get(cls)
-            if factory is not None:
-                break
+        factory = publisher(sensor.plugin_filename)
         if factory is None:
             log.warning(
                 "model '%s': %s '%s' has no ROS publisher in the stand-in",
@@ -49,3 +45,10 @@ def attach_sensor_plugins(model: Model) -> None:
             )
             continue
         model.plugins.append(factory(sensor))
+
+
+def _factory(filename: str) -> PluginFactory:
+    factory = publisher(filename)
+    if factory is None:  # every camera plugin is registered with its publisher
+        raise LookupError('no ROS publisher registered for %s' % filename)
+    return factory

@@ -24,8 +24,6 @@ from ...sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
 from ..common.packages import find_package, gazebo_exports
 from ..control.controller_manager_services import ControllerManagerServices
 from ..control.node_handle import RosNodeHandle
-from ..plugins.camera_plugin import GazeboRosCamera
-from ..plugins.depth_camera_plugin import GazeboRosDepthCamera
 from ..plugins.sensor_plugins import attach_sensor_plugins
 from .sim_thread import SimThreadCalls
 from .spawn_request import PiecewiseSpawnModel
@@ -180,9 +178,6 @@ class GazeboRosApi:
             services = ControllerManagerServices(model.hw, model.namespace)
             model.controller_manager = services.manager
             model.plugins.append(services)
-        for camera in model.cameras:
-            plugin = GazeboRosDepthCamera if camera.sensor.depth_plugin else GazeboRosCamera
-            model.plugins.append(plugin(camera))
         attach_sensor_plugins(model)
 
     def _delete(self, req: Any) -> Tuple[bool, str]:

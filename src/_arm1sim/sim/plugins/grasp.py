@@ -8,10 +8,10 @@ import logging
 import math
 from typing import List, Optional
 
-from ..description.gazebo_plugins import PluginSpec
-from ..description.limits import Limits
-from ..physics.contact import collision_name
-from ..physics.grasp import (
+from ...description.gazebo_plugins import PluginSpec
+from ...description.limits import Limits
+from ...physics.contact import collision_name
+from ...physics.grasp import (
     DEFAULT_FORCES_ANGLE_TOLERANCE,
     DEFAULT_MAX_GRIP_COUNT,
     DEFAULT_RELEASE_TOLERANCE,
@@ -20,7 +20,8 @@ from ..physics.grasp import (
     GraspFix,
     GraspParams,
 )
-from ..physics.robot import Robot
+from ...physics.robot import Robot
+from .registry import PluginType, register
 
 log = logging.getLogger('_arm1sim.physics')
 
@@ -156,3 +157,12 @@ def build_grasp_fix(
     )
     fix.namespace = ns
     return fix
+
+
+register(
+    PluginType(
+        GRASP_PLUGIN,
+        build_model=build_grasp_fix,
+        publisher='grasp_plugin:grasp_event_publisher',
+    )
+)
