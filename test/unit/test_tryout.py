@@ -155,6 +155,15 @@ def test_verdict_names_each_failure():
     assert not v['ok']
     assert v['problems'][0].startswith('the workspace did not build')
     assert 'PATH_TOLERANCE_VIOLATED (j path error 0.3)' in v['problems'][1]
+    # the rest built without the failed package: the bringup ran from that workspace
+    rep['build'] = {
+        'ok': False,
+        'rest_ok': True,
+        'per_package': {'realsense2_camera': {'built': False}, 'stretch_gazebo': {'built': True}},
+    }
+    assert report.verdict(rep)['problems'][0] == (
+        'the workspace did not build with realsense2_camera (ran from it built without)'
+    )
     assert report.verdict({'build': {'ok': True}, 'bringup': {'up': False, 'error': 'x'}}) == {
         'ok': False,
         'problems': ['the bringup did not come up: x'],

@@ -11,8 +11,16 @@ CHATTER_WORDS = 'velocity-limit chatter'  # sim/limit_chatter.py's warning
 def verdict(rep: Dict[str, Any]) -> Dict[str, Any]:
     """ok, and one line per reason it is not."""
     why: List[str] = []
-    if not rep.get('build', {}).get('ok'):
-        why.append('the workspace did not build (ran from the sources)')
+    build = rep.get('build', {})
+    if not build.get('ok'):
+        failed = sorted(n for n, v in (build.get('per_package') or {}).items() if not v['built'])
+        if build.get('rest_ok') and failed:
+            why.append(
+                'the workspace did not build with %s (ran from it built without)'
+                % ', '.join(failed)
+            )
+        else:
+            why.append('the workspace did not build (ran from the sources)')
     up = rep.get('bringup', {})
     if not up.get('up'):
         why.append('the bringup did not come up: %s' % up.get('error'))
