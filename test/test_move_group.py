@@ -463,6 +463,26 @@ class MoveGroupTest(WorldTestCase):
             np.linalg.norm([got.x - there[0], got.y - there[1], got.z - there[2]]), 0.02
         )
 
+    def test_11_a_goals_planning_scene_diff_holds_for_that_plan_only(self):
+        goal = joint_goal('toy_arm', ARM, READY[:1] + [0.3] + READY[2:])
+        goal.planning_options.plan_only = True
+        self.assertTrue(self.move.send_goal_and_wait(goal, rospy.Duration(60)) is not None)
+        self.assertEqual(self.move.get_result().error_code.val, MoveItErrorCodes.SUCCESS)
+        hand = self.link_pose('toy_hand', ARM, READY[:1] + [0.3] + READY[2:])
+        co = CollisionObject(id='ghost', operation=CollisionObject.ADD)
+        co.header.frame_id = 'world'
+        co.pose = Pose(position=hand.position)
+        co.pose.orientation.w = 1.0
+        co.primitives.append(SolidPrimitive(type=SolidPrimitive.SPHERE, dimensions=[0.1]))
+        goal.planning_options.planning_scene_diff.world.collision_objects.append(co)
+        self.move.send_goal_and_wait(goal, rospy.Duration(60))
+        self.assertEqual(self.move.get_result().error_code.val, MoveItErrorCodes.GOAL_IN_COLLISION)
+        scene = rospy.ServiceProxy('get_planning_scene', GetPlanningScene)
+        names = PlanningSceneComponents(components=PlanningSceneComponents.WORLD_OBJECT_NAMES)
+        self.assertNotIn(
+            'ghost', [o.id for o in scene(components=names).scene.world.collision_objects]
+        )
+
 
 if __name__ == '__main__':
     rostest.rosrun('arm1', 'move_group', MoveGroupTest)

@@ -220,6 +220,22 @@ def test_objects_attached_objects_and_touch_links(robot, world):
     assert 'can' in world.objects and 'can' not in world.attached
 
 
+def test_snapshot_and_restore_put_the_scene_back(robot, world):
+    world.add_object(SceneObject('a', ((1, 0, 0), (0, 0, 0, 1)), [Shape('box', (0.1, 0.1, 0.1))]))
+    world.attach(
+        SceneObject('b', ((0, 0, 0.1), (0, 0, 0, 1)), [Shape('sphere', (0.02,))], link='toy_hand')
+    )
+    world.allow('a', 'toy_link1')
+    snap = world.snapshot()
+    world.remove('a')
+    world.add_object(SceneObject('c', ((0, 1, 0), (0, 0, 0, 1)), [Shape('box', (0.1, 0.1, 0.1))]))
+    world.allow('a', 'toy_link1', False)
+    world.restore(snap)
+    assert list(world.objects) == ['a'] and list(world.attached) == ['b']
+    assert world.attached['b'].link == 'toy_hand' and ('a', 'toy_link1') in world.allowed
+    assert world.objects['a'].bodies  # built again in the collision world
+
+
 # --- time parameterization -------------------------------------------------------------------
 
 

@@ -163,6 +163,29 @@ class CollisionWorld:
         self.add_object(world)
         return world
 
+    def snapshot(self) -> Tuple[List[SceneObject], List[SceneObject], Set[Tuple[str, str]]]:
+        """What restore() puts back: the objects (without their bodies) and the allowed
+        entries."""
+
+        def bare(o: SceneObject) -> SceneObject:
+            return SceneObject(o.id, o.pose, list(o.shapes), o.link, list(o.touch_links))
+
+        return (
+            [bare(o) for o in self.objects.values()],
+            [bare(o) for o in self.attached.values()],
+            set(self.allowed),
+        )
+
+    def restore(
+        self, snap: Tuple[List[SceneObject], List[SceneObject], Set[Tuple[str, str]]]
+    ) -> None:
+        self.clear()
+        for o in snap[0]:
+            self.add_object(o)
+        for o in snap[1]:
+            self.attach(o)
+        self.allowed = set(snap[2])
+
     def clear(self) -> None:
         for object_id in list(self.objects) + list(self.attached):
             self.remove(object_id)

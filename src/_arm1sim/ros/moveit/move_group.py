@@ -465,20 +465,24 @@ class MoveGroup:
 
     def apply_scene(self, scene: PlanningScene) -> None:
         with self.lock:
-            if not scene.is_diff:
-                self.world.clear()
-            # the robot state's attached objects first, then the world, as MoveIt's
-            # PlanningScene::setPlanningSceneDiffMsg
-            for aco in scene.robot_state.attached_collision_objects:
-                self.apply_attached(aco)
-            for co in scene.world.collision_objects:
-                self.apply_collision_object(co)
-            acm = scene.allowed_collision_matrix
-            for a, entry in zip(acm.entry_names, acm.entry_values):
-                for b, allowed in zip(acm.entry_names, entry.enabled):
-                    if a != b:
-                        self.world.allow(a, b, bool(allowed))
+            self._apply_scene(scene)
         self.publish_scene()
+
+    def _apply_scene(self, scene: PlanningScene) -> None:
+        """A planning scene message applied (the caller holds the lock)."""
+        if not scene.is_diff:
+            self.world.clear()
+        # the robot state's attached objects first, then the world, as MoveIt's
+        # PlanningScene::setPlanningSceneDiffMsg
+        for aco in scene.robot_state.attached_collision_objects:
+            self.apply_attached(aco)
+        for co in scene.world.collision_objects:
+            self.apply_collision_object(co)
+        acm = scene.allowed_collision_matrix
+        for a, entry in zip(acm.entry_names, acm.entry_values):
+            for b, allowed in zip(acm.entry_names, entry.enabled):
+                if a != b:
+                    self.world.allow(a, b, bool(allowed))
 
     def _applied(self, topic: str, apply: Callable[[Any], None], msg: Any) -> None:
         """A topic's message applied; a bad one is said in the log and changes nothing."""
@@ -560,6 +564,27 @@ class MoveGroup:
         )
         return MoveItErrorCodes.SUCCESS, traj, motion.start, result.planning_time
 
+    def plan_in(self, diff: PlanningScene, request) -> Tuple[int, Any, Dict[str, float], float]:
+        """plan() in the scene with ``diff`` laid over it for this request only, as MoveIt's
+        move action does with a goal's planning_scene_diff that holds anything."""
+        has_content = (
+            diff.world.collision_objects
+            or diff.robot_state.attached_collision_objects
+            or diff.allowed_collision_matrix.entry_names
+        )
+        if not has_content:
+            return self.plan(request)
+        with self.lock:
+            snapshot = self.world.snapshot()
+            try:
+                self._apply_scene(diff)
+                return self.plan(request)
+            except (SceneError, ValueError, LookupError) as exc:
+                rospy.logerr('planning_scene_diff: %s', exc)
+                return MoveItErrorCodes.FAILURE, None, {}, 0.0
+            finally:
+                self.world.restore(snapshot)
+
     def display(self, traj, start: Dict[str, float]) -> None:
         msg = DisplayTrajectory(model_id=self.robot.srdf.name)
         msg.trajectory.append(traj)
@@ -583,11 +608,6 @@ class MoveGroup:
     def act_move(self, goal) -> None:
         result = MoveGroupResult()
         self.move_server.publish_feedback(MoveGroupFeedback(state='PLANNING'))
-        if (
-            not goal.planning_options.planning_scene_diff.is_diff
-            and goal.planning_options.planning_scene_diff.world.collision_objects
-        ):
-            rospy.logwarn_once('move_group goal: a non-diff planning_scene_diff is not applied')
         request = goal.request
         if not goal.planning_options.plan_only and (
             request.start_state.joint_state.name or request.start_state.attached_collision_objects
@@ -597,7 +617,7 @@ class MoveGroup:
                 'Ignoring the state supplied as start state in the motion planning request'
             )
             request.start_state = RobotState(is_diff=True)
-        code, traj, start, t = self.plan(request)
+        code, traj, start, t = self.plan_in(goal.planning_options.planning_scene_diff, request)
         result.error_code.val = code
         result.planning_time = t
         if start:
