@@ -463,7 +463,7 @@ class MoveGroupTest(WorldTestCase):
             np.linalg.norm([got.x - there[0], got.y - there[1], got.z - there[2]]), 0.02
         )
 
-    def test_11_a_goals_planning_scene_diff_holds_for_that_plan_only(self):
+    def test_11_a_goals_scene_diff_and_start_attached_bodies_hold_for_that_plan(self):
         goal = joint_goal('toy_arm', ARM, READY[:1] + [0.3] + READY[2:])
         goal.planning_options.plan_only = True
         self.assertTrue(self.move.send_goal_and_wait(goal, rospy.Duration(60)) is not None)
@@ -481,6 +481,32 @@ class MoveGroupTest(WorldTestCase):
         names = PlanningSceneComponents(components=PlanningSceneComponents.WORLD_OBJECT_NAMES)
         self.assertNotIn(
             'ghost', [o.id for o in scene(components=names).scene.world.collision_objects]
+        )
+        # a start state's attached body: part of that state only (a big plate through the arm)
+        req = GetMotionPlanRequest()
+        r = req.motion_plan_request
+        r.group_name = 'toy_arm'
+        r.start_state.is_diff = True
+        r.goal_constraints.append(goal.request.goal_constraints[0])
+        plate = AttachedCollisionObject(link_name='toy_hand')
+        plate.object = CollisionObject(id='plate', operation=CollisionObject.ADD)
+        plate.object.header.frame_id = 'toy_hand'
+        plate.object.pose.orientation.w = 1.0
+        plate.object.primitives.append(
+            SolidPrimitive(type=SolidPrimitive.BOX, dimensions=[0.8, 0.8, 0.02])
+        )
+        r.start_state.attached_collision_objects.append(plate)
+        plan = rospy.ServiceProxy('plan_kinematic_path', GetMotionPlan)
+        self.assertEqual(
+            plan(req).motion_plan_response.error_code.val, MoveItErrorCodes.START_STATE_IN_COLLISION
+        )
+        r.start_state.attached_collision_objects = []
+        self.assertEqual(plan(req).motion_plan_response.error_code.val, MoveItErrorCodes.SUCCESS)
+        attached = PlanningSceneComponents(
+            components=PlanningSceneComponents.ROBOT_STATE_ATTACHED_OBJECTS
+        )
+        self.assertEqual(
+            scene(components=attached).scene.robot_state.attached_collision_objects, []
         )
 
 

@@ -12,6 +12,7 @@ trajectory_execution_event in, ~display_planned_path and ~monitored_planning_sce
 
 from __future__ import annotations
 
+import copy
 import logging
 import sys
 import threading
@@ -567,6 +568,11 @@ class MoveGroup:
     def plan_in(self, diff: PlanningScene, request) -> Tuple[int, Any, Dict[str, float], float]:
         """plan() in the scene with ``diff`` laid over it for this request only, as MoveIt's
         move action does with a goal's planning_scene_diff that holds anything."""
+        start_attached = list(request.start_state.attached_collision_objects)
+        if start_attached:  # a start state's attached bodies: part of that state only
+            diff = copy.deepcopy(diff)
+            diff.is_diff = True
+            diff.robot_state.attached_collision_objects += start_attached
         has_content = (
             diff.world.collision_objects
             or diff.robot_state.attached_collision_objects
@@ -593,7 +599,9 @@ class MoveGroup:
 
     def srv_plan(self, request) -> GetMotionPlanResponse:
         res = GetMotionPlanResponse()
-        code, traj, start, t = self.plan(request.motion_plan_request)
+        code, traj, start, t = self.plan_in(
+            PlanningScene(is_diff=True), request.motion_plan_request
+        )
         r = res.motion_plan_response
         r.error_code.val = code
         r.planning_time = t
