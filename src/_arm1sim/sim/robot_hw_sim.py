@@ -34,7 +34,7 @@ from ..control.hardware_interface import (
     VELOCITY_JOINT_INTERFACE,
     JointHandle,
     SaturationBounds,
-    saturate_effort,
+    saturate_handles,
     saturation_bounds,
 )
 from ..control.interfaces import NodeHandle, Resources
@@ -307,7 +307,7 @@ class DefaultRobotHWSim:
             if d.handle.interface == EFFORT_JOINT_INTERFACE or d.pid is not None
         ]
         self._torque_indices = [d.index for d in self._torque]
-        # Effort joints without soft limits (all of them, usually): write saturates them inline.
+        # Effort joints without soft limits (all of them, usually): saturated in one pass.
         self._plain_efforts = [
             (d.handle,) + d.bounds
             for d in self._torque
@@ -386,7 +386,7 @@ class DefaultRobotHWSim:
 
     def write(self) -> None:
         if self._plain_efforts:
-            self.robot.apply_efforts(self._torque_indices, self._saturated_efforts())
+            self.robot.apply_efforts(self._torque_indices, saturate_handles(self._plain_efforts))
         else:
             self._write_torques()
         if self._teleported or self._motored:
@@ -394,25 +394,6 @@ class DefaultRobotHWSim:
         if self._chatter is not None:
             for name, limit in self._chatter.observe([h.velocity for h in self._chatter_handles]):
                 log.warning(chatter_message(name, limit))
-
-    def _saturated_efforts(self) -> List[float]:
-        """saturate_effort written out inline for each joint of _plain_efforts (the usual
-        robot: every joint an EffortJointInterface without soft limits); sets each handle's
-        effort. Same comparisons in the same order as saturate_effort: the same efforts."""
-        isfinite = math.isfinite
-        efforts = []
-        for h, max_effort, lower, upper, max_velocity in self._plain_efforts:
-            command = h.command
-            if isfinite(command):
-                position, velocity = h.position, h.velocity
-                hi = 0.0 if position > upper or velocity > max_velocity else max_effort
-                lo = 0.0 if position < lower or velocity < -max_velocity else -max_effort
-                effort = hi if command > hi else lo if command < lo else command
-            else:
-                effort = 0.0
-            h.effort = effort
-            efforts.append(effort)
-        return efforts
 
     def _write_torques(self) -> None:
         dt = self.period
@@ -423,7 +404,7 @@ class DefaultRobotHWSim:
                 if h.limits.soft is not None:
                     effort = d.soft_effort()
                 else:
-                    effort = saturate_effort(h.command, h.position, h.velocity, *d.bounds)
+                    effort = saturate_handles(((h,) + d.bounds,))[0]
             else:
                 assert d.pid is not None
                 if h.interface == POSITION_JOINT_INTERFACE:
