@@ -7,7 +7,7 @@ import pytest
 
 from _arm1sim.tryout import logs, report, workspace
 from _arm1sim.tryout.cli import launch_args, parse_args
-from _arm1sim.tryout.probe import STEP, _target, remapped
+from _arm1sim.tryout.probe import STEP, _target, answers, remapped
 
 PACKAGE = '''<?xml version="1.0"?>
 <package format="2"><name>{name}</name><version>1.0.0</version>
@@ -183,3 +183,21 @@ def test_a_remapped_action_is_the_one_offered_name_no_controller_has_by_default(
     # two remapped names: which is whose cannot be told; none: nothing to find
     assert remapped(defaults[0], offered + ['/other_action'], defaults) is None
     assert remapped(defaults[0], offered[:1], defaults) is None
+
+
+def test_a_node_too_busy_to_answer_is_alive_and_a_closed_port_is_not():
+    # a world spawning a big model under load may not answer getPid for seconds: not dead
+    import socket
+
+    busy = socket.socket()
+    busy.bind(('127.0.0.1', 0))
+    busy.listen(1)  # accepts, never answers
+    closed = socket.socket()
+    closed.bind(('127.0.0.1', 0))
+    port = closed.getsockname()[1]
+    closed.close()  # nothing listens there
+    try:
+        assert answers('http://127.0.0.1:%d/' % busy.getsockname()[1], 0.3) == 'busy'
+        assert answers('http://127.0.0.1:%d/' % port, 0.3) == 'no'
+    finally:
+        busy.close()

@@ -49,21 +49,32 @@ def node_registered(name: str) -> bool:
 
 
 def node_alive(name: str) -> bool:
-    """The node answers on its slave API (a dead node may still be registered)."""
+    """The node answers on its slave API, or is too busy to answer in time (a dead node may
+    still be registered; a live world spawning a big model may not answer for seconds)."""
+    try:
+        uri = master().lookupNode(name)
+    except Exception:  # rosgraph.MasterError: not (yet) registered
+        return False
+    return answers(uri) != 'no'
+
+
+def answers(uri: str, timeout: float = 2.0) -> str:
+    """'yes' when the XML-RPC server at uri answers getPid within timeout, 'busy' when it
+    accepted the connection but did not answer in time, 'no' when nothing listens."""
     import socket
     import xmlrpc.client
 
+    old = socket.getdefaulttimeout()
+    socket.setdefaulttimeout(timeout)
     try:
-        uri = master().lookupNode(name)
-        old = socket.getdefaulttimeout()
-        socket.setdefaulttimeout(2.0)
-        try:
-            xmlrpc.client.ServerProxy(uri).getPid('/try_robot')
-        finally:
-            socket.setdefaulttimeout(old)
-        return True
-    except Exception:  # not registered, refused, timed out
-        return False
+        xmlrpc.client.ServerProxy(uri).getPid('/try_robot')
+        return 'yes'
+    except socket.timeout:
+        return 'busy'
+    except Exception:  # refused, reset, malformed: no node there
+        return 'no'
+    finally:
+        socket.setdefaulttimeout(old)
 
 
 def offered(msg_type: str, suffix: str = '') -> List[str]:
