@@ -120,6 +120,7 @@ class SceneModel:
     def __init__(self, view: 'WebView', model: ModelView, visuals: List[Visual]) -> None:
         scene = view.server.scene
         self.name, self.token = model.name, model.token
+        self.visuals = visuals  # for the MoveIt layer's ghosts
         self.root = '/world/%s' % model.name
         self.frames = [
             scene.add_frame('%s/%d' % (self.root, i), show_axes=False)
@@ -342,6 +343,15 @@ class CameraPanel:
         self.handle.remove()
 
 
+def _moveit_view(view: 'WebView') -> Any:
+    """The MoveIt layer (planning scene, planned paths), when moveit_msgs is built."""
+    try:
+        from .moveit_view import MoveItView
+    except ImportError:  # a workspace without moveit_msgs: the world alone
+        return None
+    return MoveItView(view)
+
+
 class WebView:
     """The browser view of one world; ``url`` is the address to open."""
 
@@ -375,6 +385,7 @@ class WebView:
         self.frames = 0  # scene updates sent (the test's and the bench's frame counter)
         self._running = True
         self._build_gui()
+        self.moveit = _moveit_view(self)
         self._thread = threading.Thread(target=self._run, name='web-view', daemon=True)
         self._thread.start()
 
@@ -480,6 +491,8 @@ class WebView:
                 break
             try:
                 self._show(snap)
+                if self.moveit is not None:
+                    self.moveit.update(snap.models)
                 if started - last_panel >= PANEL_PERIOD:
                     last_panel = started
                     self._panels(snap)
