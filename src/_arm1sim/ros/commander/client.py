@@ -9,6 +9,7 @@ import threading
 import time
 from typing import Dict, List, Optional, Sequence
 
+import actionlib
 import rospy
 from moveit_msgs.msg import RobotState
 from moveit_msgs.srv import GetPositionFK, GetPositionFKRequest
@@ -34,6 +35,32 @@ COLLISION_OBJECT_TOPIC = 'collision_object'
 
 # CurrentStateMonitor's default wait for a state newer than the request (seconds, wall)
 STATE_WAIT = 1.0
+
+
+class ActionClient(actionlib.SimpleActionClient):
+    """SimpleActionClient without its race: move_group may answer before send_goal has
+    stored the new goal's handle, and rospy's client then logs 'Got a transition callback on
+    a goal handle that we're not tracking' (an ERROR line the C++ interface never prints).
+    The handle is stored under a lock the callbacks take; a stale handle's news is dropped."""
+
+    def __init__(self, ns: str, action_spec) -> None:
+        self._tracking = threading.RLock()
+        super().__init__(ns, action_spec)
+
+    def send_goal(self, goal, done_cb=None, active_cb=None, feedback_cb=None) -> None:
+        with self._tracking:
+            super().send_goal(goal, done_cb, active_cb, feedback_cb)
+
+    def _handle_transition(self, gh) -> None:
+        with self._tracking:
+            if gh == self.gh:
+                super()._handle_transition(gh)
+
+    def _handle_feedback(self, gh, feedback) -> None:
+        with self._tracking:
+            if gh == self.gh:
+                super()._handle_feedback(gh, feedback)
+
 
 _models: Dict[str, srdf.SemanticModel] = {}
 _models_lock = threading.Lock()

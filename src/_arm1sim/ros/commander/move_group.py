@@ -150,7 +150,7 @@ class MoveGroupCommander:
         rospy.loginfo('Ready to take commands for planning group %s.' % name)
 
     def _action(self, name: str, spec, timeout: rospy.Duration):
-        ac = actionlib.SimpleActionClient(ns_join(self._ns, name), spec)
+        ac = client.ActionClient(ns_join(self._ns, name), spec)
         if ac.wait_for_server(timeout):
             return ac
         return None
