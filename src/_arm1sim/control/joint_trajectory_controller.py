@@ -522,9 +522,9 @@ class JointTrajectoryController(Controller):
                 if self.commands_position:
                     joint.command = p
                 else:
-                    joint.command = self.velocity_ff[i] * v + self.pids[
-                        i
-                    ].compute_command_with_rate(e_pos, e_vel, dt)
+                    joint.command = self.velocity_ff[i] * v + self.pids[i].compute_command(
+                        e_pos, dt, e_vel
+                    )
                 active = self._active
                 if active is None or seg.goal is None or seg.goal.id != active.id:
                     continue
@@ -532,13 +532,8 @@ class JointTrajectoryController(Controller):
                 if self.uptime < seg.end:
                     if not tol.path.holds(e_pos, e_vel):
                         outcomes.append(
-                            (
-                                active,
-                                'abort',
-                                dict(
-                                    error_code=PATH_TOLERANCE_VIOLATED,
-                                    error_string='%s path error %f' % (self.joint_names[i], e_pos),
-                                ),
+                            _abort(
+                                active, PATH_TOLERANCE_VIOLATED, 'path', self.joint_names[i], e_pos
                             )
                         )
                         self._active = None
@@ -547,13 +542,8 @@ class JointTrajectoryController(Controller):
                         self._done[i] = True
                     elif self.uptime >= seg.end + tol.goal_time and not self._done[i]:
                         outcomes.append(
-                            (
-                                active,
-                                'abort',
-                                dict(
-                                    error_code=GOAL_TOLERANCE_VIOLATED,
-                                    error_string='%s goal error %f' % (self.joint_names[i], e_pos),
-                                ),
+                            _abort(
+                                active, GOAL_TOLERANCE_VIOLATED, 'goal', self.joint_names[i], e_pos
                             )
                         )
                         self._active = None
@@ -635,6 +625,14 @@ class JointTrajectoryController(Controller):
                 out['velocity'].append(v)
                 out['acceleration'].append(a)
             return out
+
+
+def _abort(
+    goal: GoalHandle, code: int, which: str, joint: str, error: float
+) -> Tuple[GoalHandle, str, Dict[str, Any]]:
+    """An abort outcome with upstream's error string ('<joint> path|goal error <e>')."""
+    text = '%s %s error %f' % (joint, which, error)
+    return goal, 'abort', dict(error_code=code, error_string=text)
 
 
 def _state(point: Mapping[str, Any], j: int) -> State:
