@@ -45,23 +45,23 @@ def rise_text(m: StepMetrics) -> str:
     return '%.3f s' % m.rise_time if not math.isnan(m.rise_time) else '-'
 
 
+def metric_columns(m: StepMetrics) -> str:
+    """A step's start, target, rise, overshoot, settling, steady-state error and jitter."""
+    return '%+8.3f %+8.3f %8s %9.1f%% %9s %+9.4f  %.2g rad' % (
+        m.start,
+        m.target,
+        rise_text(m),
+        m.overshoot,
+        fmt_time(m.settling_time),
+        m.steady_state_error,
+        m.jitter,
+    )
+
+
 def metric_rows(joint: str, run: StepRun, criteria: Criteria) -> List[str]:
     rows = []
     for name, m in zip(('out', 'back'), run.metrics):
-        rows.append(
-            '%-8s %-5s %+8.3f %+8.3f %8s %9.1f%% %9s %+9.4f  %.2g rad'
-            % (
-                joint,
-                name,
-                m.start,
-                m.target,
-                rise_text(m),
-                m.overshoot,
-                fmt_time(m.settling_time),
-                m.steady_state_error,
-                m.jitter,
-            )
-        )
+        rows.append('%-8s %-5s %s' % (joint, name, metric_columns(m)))
     rows.append(
         '%-8s %s (other joints moved up to %.3f rad)'
         % ('', verdict(run, criteria), run.others_wobble)
@@ -177,18 +177,6 @@ class SearchProgress:
 def recorded_rows(joint: str, steps: Sequence[Any], criteria: Criteria) -> List[str]:
     """Rows of the steps found in a recorded run: ``[(t, StepMetrics)]`` of one joint."""
     return [
-        '%-8s %5.1f %+8.3f %+8.3f %8s %9.1f%% %9s %+9.4f  %.2g rad  %s'
-        % (
-            joint,
-            t,
-            m.start,
-            m.target,
-            rise_text(m),
-            m.overshoot,
-            fmt_time(m.settling_time),
-            m.steady_state_error,
-            m.jitter,
-            'ok' if criteria.ok(m) else 'NOT ok',
-        )
+        '%-8s %5.1f %s  %s' % (joint, t, metric_columns(m), 'ok' if criteria.ok(m) else 'NOT ok')
         for t, m in steps
     ]
