@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import importlib
 import os
-from typing import Any, Dict, List, Tuple
+from typing import Any, Dict, List, Sequence, Tuple
 
 import pytest
 import yaml
@@ -408,3 +408,22 @@ def generated_class(type_name: str) -> Any:
         if hasattr(module, name):
             return getattr(module, name)
     raise AssertionError('%s: no generated class in %s.msg or %s.srv' % (type_name, pkg, pkg))
+
+
+# the packages tools/make_compat_packages.py builds from tools/compat_msgs
+COMPAT_PACKAGES = ('gazebo_msgs', 'control_msgs', 'controller_manager_msgs')
+
+
+def types_defined_here(packages: Sequence[str] = COMPAT_PACKAGES) -> List[str]:
+    """Every type the definition files yield, actions expanded as genaction does."""
+    names = []
+    for pkg in packages:
+        for kind in ('msg', 'srv', 'action'):
+            folder = os.path.join(DEFINITIONS, pkg, kind)
+            for fname in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+                base = fname.rsplit('.', 1)[0]
+                if kind == 'action':
+                    names += ['%s/%s%s' % (pkg, base, part) for part in ACTION_PARTS]
+                else:
+                    names.append('%s/%s' % (pkg, base))
+    return sorted(names)

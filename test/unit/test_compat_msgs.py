@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Dict, List, Sequence
+from typing import Dict
 
 import pytest
-from helpers import ACTION_PARTS, DEFINITIONS, generated_class
+from helpers import COMPAT_PACKAGES as PACKAGES
+from helpers import DEFINITIONS, generated_class, types_defined_here
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-PACKAGES = ('gazebo_msgs', 'control_msgs', 'controller_manager_msgs')
 # md5s listed in shared/reference (ros-controllers-semantics.md §4, gazebo-ros-api.md §2).
 REFERENCE = {
     'control_msgs/FollowJointTrajectoryAction': 'bc4f9b743838566551c0390c65f1a248',
@@ -115,21 +115,6 @@ UPSTREAM = {
 }
 
 ALL: Dict[str, str] = {**REFERENCE, **UPSTREAM}
-
-
-def types_defined_here(packages: Sequence[str] = PACKAGES) -> List[str]:
-    """Every type the definition files yield, actions expanded as genaction does."""
-    names = []
-    for pkg in packages:
-        for kind in ('msg', 'srv', 'action'):
-            folder = os.path.join(DEFINITIONS, pkg, kind)
-            for fname in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
-                base = fname.rsplit('.', 1)[0]
-                if kind == 'action':
-                    names += ['%s/%s%s' % (pkg, base, part) for part in ACTION_PARTS]
-                else:
-                    names.append('%s/%s' % (pkg, base))
-    return sorted(names)
 
 
 @pytest.mark.parametrize('type_name', sorted(ALL))

@@ -9,8 +9,7 @@ Needs the built workspace (tools/ws-run python -m pytest test/unit/test_moveit_m
 from __future__ import annotations
 
 import pytest
-from helpers import generated_class
-from test_compat_msgs import types_defined_here
+from helpers import generated_class, types_defined_here
 
 PACKAGES = ('moveit_msgs', 'octomap_msgs', 'object_recognition_msgs')
 
