@@ -191,14 +191,18 @@ class FaultsSensors(unittest.TestCase):
         self.refused(self.sdf_srv, 'html_box', '<html/>', "'html_box'", 'html')
         self.assert_world_runs()
 
-    def test_sdf_mesh_uris_that_climb_out_or_are_missing_are_refused_naming_them(self):
+    def test_sdf_mesh_uris_that_climb_out_are_refused_and_missing_ones_left_out(self):
         for uri in ('model://../../../etc/passwd', '../../../../etc/passwd', 'file:///etc/passwd'):
             msg = self.refused(self.sdf_srv, 'climber', sdf_box(uri=uri), "'climber'", uri)
             self.assertNotIn('root:x:0:0', msg)
         self.refused(self.sdf_srv, 'no_mesh', sdf_box(uri='model://ghost/m.stl'), 'model://ghost')
-        # within a model on GAZEBO_MODEL_PATH (test/worlds/models): a missing file, a way out
+        # within a model on GAZEBO_MODEL_PATH (test/worlds/models): a missing file is left
+        # out with a warning (as Gazebo's server), a way out is refused
         missing = 'model://sdf_crate/meshes/nope.stl'
-        self.refused(self.sdf_srv, 'no_file', sdf_box(uri=missing), 'not found', 'nope.stl')
+        mark = time.monotonic()
+        self.spawned(self.sdf_srv, 'no_file', sdf_box(uri=missing))
+        self.assertTrue(logged(self.rosout, mark, "'body'", 'nope.stl', 'not found'))
+        self.gone('no_file')
         out = 'model://sdf_crate/../../../../../../etc/passwd'
         msg = self.refused(self.sdf_srv, 'leaver', sdf_box(uri=out), "leaves model 'sdf_crate'")
         self.assertNotIn('root:x:0:0', msg)

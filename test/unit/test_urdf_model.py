@@ -215,18 +215,38 @@ def test_file_uri_and_plain_path(find_package):
         assert {m.get('filename') for m in ET.fromstring(out).iter('mesh')} == {path}
 
 
-def test_missing_mesh_names_the_path_and_the_link(find_package):
-    with pytest.raises(UrdfError) as exc:
-        resolve_mesh_uris(mesh_robot('package://arm1/meshes/elbow.STL', 'forearm'), find_package)
-    msg = str(exc.value)
-    assert "'forearm'" in msg
-    assert os.path.join(REPO_ROOT, 'meshes', 'elbow.STL') in msg
+def test_a_missing_mesh_is_left_out_with_a_warning_naming_the_link_and_the_uri(
+    find_package, caplog
+):
+    """As Gazebo's server: a missing visual is left out, a missing collision too (the link
+    keeps its <inertial>), each said once; the model still spawns."""
+    uri = 'package://arm1/meshes/elbow.STL'
+    xml = robot(
+        '<link name="forearm"><inertial><mass value="0.3"/>'
+        '<inertia ixx="1e-3" iyy="1e-3" izz="1e-3" ixy="0" ixz="0" iyz="0"/></inertial>'
+        '<visual><geometry><mesh filename="%s"/></geometry></visual>'
+        '<collision><geometry><mesh filename="%s"/></geometry></collision>'
+        '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>' % (uri, uri)
+    )
+    with caplog.at_level('WARNING'):
+        out = ET.fromstring(resolve_mesh_uris(xml, find_package))
+    link = out.find('link')
+    assert link.find('visual') is None
+    assert [c.find('geometry/box') is not None for c in link.findall('collision')] == [True]
+    assert link.find('inertial/mass').get('value') == '0.3'
+    said = [r.getMessage() for r in caplog.records]
+    assert len(said) == 2 and all("'forearm'" in m and uri in m for m in said)
+    assert 'visual' in said[0] and 'left out' in said[0]
+    assert 'collision' in said[1] and 'keeps its inertia' in said[1]
 
 
-def test_unknown_package_names_the_package_and_the_link(find_package):
-    with pytest.raises(UrdfError) as exc:
-        resolve_mesh_uris(mesh_robot('package://nowhere_pkg/m.stl', 'hand'), find_package)
-    assert "'nowhere_pkg'" in str(exc.value) and "'hand'" in str(exc.value)
+def test_an_unknown_package_is_a_missing_mesh_named_with_its_link(find_package, caplog):
+    with caplog.at_level('WARNING'):
+        out = resolve_mesh_uris(mesh_robot('package://nowhere_pkg/m.stl', 'hand'), find_package)
+    assert ET.fromstring(out).find('link').find('visual') is None
+    assert any(
+        "'hand'" in r.getMessage() and 'nowhere_pkg' in r.getMessage() for r in caplog.records
+    )
 
 
 def test_arm1_meshes_all_resolve(arm1_urdf, find_package):

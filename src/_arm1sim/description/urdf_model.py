@@ -7,6 +7,7 @@ on links, joints and names, and mesh URIs that stay where they point.
 
 from __future__ import annotations
 
+import logging
 import math
 import os
 import stat
@@ -20,6 +21,8 @@ from .limits import LimitError, Limits
 from .mesh_limits import MESH_EXTENSIONS, MeshError, count_triangles, mesh_kind
 from .names import shown
 from .surface import SurfaceError, sdf_surface_tags
+
+log = logging.getLogger('_arm1sim.description')
 
 ACTUATED_TYPES = ('revolute', 'continuous', 'prismatic')
 CONTROL_PLUGIN = 'libgazebo_ros_control.so'
@@ -466,17 +469,43 @@ def resolve_mesh_uris(
     taken as they are, as Gazebo does. Each mesh must be a regular .stl, .obj or
     .dae file within ``limits.mesh_bytes`` and ``limits.mesh_triangles``. Errors
     name the link, the URI and the path, never the file's contents.
+
+    A mesh file that is not there (or whose package is unknown) does not refuse the
+    model, as in Gazebo, whose server logs "Unable to load mesh" and goes on: its
+    ``<visual>`` is left out, its ``<collision>`` too (the link keeps its inertia and
+    collides with nothing), each with a warning naming the link and the file.
     """
     limits = limits or Limits()
     root = parse_description(xml_text, limits)
-    checked: Dict[str, str] = {}  # uri -> path, each mesh checked once per call
+    checked: Dict[str, Optional[str]] = {}  # uri -> path (None: missing), checked once
     for link in root.findall('link'):
-        for mesh in link.iter('mesh'):
-            uri = mesh.get('filename', '')
-            if uri not in checked:
-                checked[uri] = _checked_mesh(uri, link.get('name') or '', find_package, limits)
-            mesh.set('filename', checked[uri])
+        name = link.get('name') or ''
+        for part in list(link):
+            if part.tag not in ('visual', 'collision'):
+                continue
+            for mesh in part.iter('mesh'):
+                uri = mesh.get('filename', '')
+                if uri not in checked:
+                    checked[uri] = _checked_mesh(uri, name, find_package, limits)
+                path = checked[uri]
+                if path is None:
+                    log.warning(
+                        "link '%s': %s mesh %s not found: %s",
+                        name,
+                        part.tag,
+                        shown(uri, 200),
+                        'left out (the model spawns without it, as in Gazebo)'
+                        if part.tag == 'visual'
+                        else 'the link keeps its inertia and collides with nothing (as in Gazebo)',
+                    )
+                    link.remove(part)
+                    break
+                mesh.set('filename', path)
     return ET.tostring(root, encoding='unicode')
+
+
+class _MissingPackage(UrdfError):
+    """A package:// URI's package is not on the package path: the mesh is missing."""
 
 
 def _mesh_path(uri: str, where: str, find_package: Callable[[str], str]) -> str:
@@ -493,7 +522,7 @@ def _mesh_path(uri: str, where: str, find_package: Callable[[str], str]) -> str:
         try:
             pkg_dir = os.path.abspath(find_package(pkg))  # abspath also collapses '..'
         except LookupError:
-            raise UrdfError(
+            raise _MissingPackage(
                 "%s: package '%s' not found on the ROS package path" % (where, pkg)
             ) from None
         path = os.path.normpath(os.path.join(pkg_dir, rel))
@@ -512,10 +541,16 @@ def _mesh_path(uri: str, where: str, find_package: Callable[[str], str]) -> str:
     return path if os.path.isabs(path) else os.path.join(os.getcwd(), path)
 
 
-def _checked_mesh(uri: str, link: str, find_package: Callable[[str], str], limits: Limits) -> str:
-    """The path of ``uri``'s mesh once it passed every check; UrdfError otherwise."""
+def _checked_mesh(
+    uri: str, link: str, find_package: Callable[[str], str], limits: Limits
+) -> Optional[str]:
+    """The path of ``uri``'s mesh once it passed every check, None for a file (or package)
+    that is not there; UrdfError otherwise."""
     where = 'link %s: mesh %s' % (shown(link or ''), shown(uri, 200))
-    path = _mesh_path(uri, where, find_package)
+    try:
+        path = _mesh_path(uri, where, find_package)
+    except _MissingPackage:
+        return None
     kind = mesh_kind(path)
     if kind is None:
         raise UrdfError(
@@ -524,9 +559,7 @@ def _checked_mesh(uri: str, link: str, find_package: Callable[[str], str], limit
     try:
         st = os.stat(path)
     except (FileNotFoundError, NotADirectoryError):
-        raise UrdfError(
-            "link '%s': mesh file not found: %s (from %s)" % (link, path, shown(uri, 200))
-        ) from None
+        return None
     except OSError as exc:
         raise UrdfError('%s: %s cannot be read: %s' % (where, path, exc.strerror)) from None
     if not stat.S_ISREG(st.st_mode):  # a fifo or device would block or never end

@@ -1,6 +1,12 @@
 """Mesh files read into triangles: .stl (physics/stl.py), .obj (our reader: polygons as
 fans), .dae (pycollada, node transforms and <unit meter> applied, as pybullet's loader
-applies them)."""
+applies them).
+
+Read checked (``checked_triangles``): pybullet crashes the world on a NaN vertex or an
+out-of-range face index and makes a body with an infinite vertex fall through everything,
+so what it is handed is repaired first: such triangles are left out, each kind of repair
+said once with the file's name.
+"""
 
 from __future__ import annotations
 
@@ -17,24 +23,55 @@ class MeshReadError(ValueError):
 
 
 def mesh_triangles(path: str) -> np.ndarray:
-    """(n, 3, 3) triangles of an .stl, .obj or .dae file, in the file's units (COLLADA's
-    <unit meter> and node transforms applied, as pybullet's loader applies them)."""
+    """(n, 3, 3) finite triangles of an .stl, .obj or .dae file, in the file's units
+    (COLLADA's <unit meter> and node transforms applied, as pybullet's loader applies
+    them): what ``checked_triangles`` keeps."""
+    return checked_triangles(path)[0]
+
+
+def checked_triangles(path: str) -> Tuple[np.ndarray, List[str]]:
+    """The mesh's triangles with every vertex finite and every face index in range, and
+    what was repaired to get them: one message per kind of fault, naming the file and how
+    many triangles were left out. MeshReadError for a file that cannot be read at all."""
     kind = mesh_kind(path)
+    notes: List[str] = []
     try:
         if kind == '.stl':
-            return read_stl(path)[0]
-        if kind == '.obj':
-            return _obj_triangles(path)
-        if kind == '.dae':
-            return _dae_triangles(path)
+            triangles = read_stl(path)[0]
+        elif kind == '.obj':
+            triangles, bad = _obj_triangles(path)
+            if bad:
+                notes.append(
+                    '%s: %d faces name a vertex that is not in the file: left out' % (path, bad)
+                )
+        elif kind == '.dae':
+            triangles, bad = _dae_triangles(path)
+            if bad:
+                notes.append(
+                    '%s: %d triangles name a vertex that is not in the file: left out' % (path, bad)
+                )
+        else:
+            raise MeshReadError('%s: not an .stl, .obj or .dae mesh' % path)
     except (OSError, ValueError, IndexError) as exc:
+        if isinstance(exc, MeshReadError):
+            raise
         raise MeshReadError('%s: cannot read its triangles: %s' % (path, exc)) from None
-    raise MeshReadError('%s: not an .stl, .obj or .dae mesh' % path)
+    finite = np.isfinite(triangles).all(axis=(1, 2))
+    if not finite.all():
+        notes.append(
+            '%s: %d of %d triangles have a NaN or infinite vertex: left out'
+            % (path, int((~finite).sum()), len(triangles))
+        )
+        triangles = triangles[finite]
+    return triangles, notes
 
 
-def _obj_triangles(path: str) -> np.ndarray:
+def _obj_triangles(path: str) -> Tuple[np.ndarray, int]:
+    """The triangles and how many faces named a vertex the file does not have (0 is no
+    OBJ index; a negative one counts back from the last vertex read)."""
     vertices: List[Tuple[float, float, float]] = []
     faces: List[Tuple[int, int, int]] = []
+    bad = 0
     with open(path, encoding='utf-8', errors='replace') as f:
         for line in f:
             parts = line.split()
@@ -46,15 +83,19 @@ def _obj_triangles(path: str) -> np.ndarray:
                 refs = []
                 for ref in parts[1:]:
                     i = int(ref.split('/')[0])
-                    refs.append(i - 1 if i > 0 else len(vertices) + i)
+                    refs.append(i - 1 if i > 0 else len(vertices) + i if i < 0 else -1)
+                if min(refs) < 0 or max(refs) >= len(vertices):
+                    bad += 1
+                    continue
                 for k in range(1, len(refs) - 1):  # a polygon as a fan
                     faces.append((refs[0], refs[k], refs[k + 1]))
     if not faces:
-        return np.zeros((0, 3, 3))
-    return np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
+        return np.zeros((0, 3, 3)), bad
+    return np.asarray(vertices, dtype=np.float64)[np.asarray(faces)], bad
 
 
-def _dae_triangles(path: str) -> np.ndarray:
+def _dae_triangles(path: str) -> Tuple[np.ndarray, int]:
+    """The triangles and how many named a vertex the file does not have."""
     import collada  # pycollada: only COLLADA meshes need it
 
     try:
@@ -65,6 +106,7 @@ def _dae_triangles(path: str) -> np.ndarray:
         raise ValueError(str(exc)) from None
     unit = float(getattr(document.assetInfo, 'unitmeter', None) or 1.0)
     out = []
+    bad = 0
     if document.scene is not None:
         for geometry in document.scene.objects('geometry'):
             for primitive in geometry.primitives():
@@ -74,8 +116,16 @@ def _dae_triangles(path: str) -> np.ndarray:
                     tris = primitive.triangleset()
                 else:
                     continue  # lines and points have no surface
-                if len(tris.vertex_index):
-                    out.append(np.asarray(tris.vertex, dtype=np.float64)[tris.vertex_index])
+                if tris.vertex_index is None or not len(tris.vertex_index):
+                    continue
+                # pycollada refuses an index past its source (DaeMalformedError): kept as
+                # a second guard, since pybullet would read past its arrays
+                index = np.asarray(tris.vertex_index, dtype=np.int64).reshape(-1, 3)
+                vertex = np.asarray(tris.vertex, dtype=np.float64).reshape(-1, 3)
+                ok = ((index >= 0) & (index < len(vertex))).all(axis=1)
+                bad += int((~ok).sum())
+                if ok.any():
+                    out.append(vertex[index[ok]])
     if not out:
-        return np.zeros((0, 3, 3))
-    return np.concatenate(out) * unit
+        return np.zeros((0, 3, 3)), bad
+    return np.concatenate(out) * unit, bad
