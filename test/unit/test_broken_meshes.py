@@ -8,17 +8,26 @@ are not cached collides as its hull at once and gets its pieces made off the wor
 import os
 import time
 
+import helpers
 import numpy as np
 import pybullet as p
 import pytest
-import state_sensor_util
-from test_concave_meshes import cube_triangles, u_triangles, write_dae
 
 from _arm1sim.bench.dense_meshes import u_bracket, write_mesh
 from _arm1sim.physics import concave_meshes, mesh_jobs
 from _arm1sim.physics.concave_meshes import concave_collisions
 from _arm1sim.physics.mesh_reading import MeshReadError, checked_triangles
 from _arm1sim.physics.stl import write_binary_stl
+
+
+def cube_triangles(size=0.03):
+    """A closed cube of 12 triangles, wound outward."""
+    c = [(x, y, z) for x in (0, size) for y in (0, size) for z in (0, size)]
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    return np.array(
+        [t for a, b, d, e in quads for t in ((c[a], c[b], c[d]), (c[a], c[d], c[e]))], dtype=float
+    )
+
 
 INERTIA = '<inertia ixx="1e-5" iyy="1e-5" izz="1e-5" ixy="0" ixz="0" iyz="0"/>'
 
@@ -58,7 +67,7 @@ def test_obj_faces_out_of_range_are_left_out_naming_the_file(tmp_path):
 
 def test_collada_indices_out_of_range_refuse_the_mesh_naming_the_file(tmp_path, caplog):
     path = str(tmp_path / 'i.dae')
-    write_dae(path, cube_triangles() * 1000)
+    write_mesh(path, cube_triangles())
     text = open(path).read()
     head, _, tail = text.rpartition('<p>')
     indices, _, rest = tail.partition('</p>')
@@ -83,7 +92,7 @@ def test_a_mesh_without_a_triangle_is_left_out_and_the_link_keeps_its_inertia(
     elif ext == '.obj':
         open(path, 'w').write('# nothing\nv 0 0 0\n')
     else:
-        write_dae(path, np.zeros((0, 3, 3)))
+        write_mesh(path, np.zeros((0, 3, 3)))
     out = concave_collisions(part(path), str(tmp_path / 'cache'))
     assert '<collision' not in out and '<mass value="0.1"' in out
     assert "link 'l'" in caplog.text and 'no triangle' in caplog.text and path in caplog.text
@@ -101,7 +110,7 @@ def test_a_repaired_mesh_hands_pybullet_its_checked_triangles_and_rests_on_the_g
         f.writelines('v %r %r %r\n' % tuple(v) for v in corners)
         f.writelines('f %d %d %d\n' % (3 * i + 1, 3 * i + 2, 3 * i + 3) for i in range(12))
         f.write('f 1 2 100000\n')
-    sim = state_sensor_util.world(ground=True)
+    sim = helpers.world(ground=True)
     try:
         for i, name in enumerate(['nan.stl', 'inf.stl', 'range.obj']):
             path = str(tmp_path / name)
@@ -151,7 +160,7 @@ def test_a_dense_mesh_collides_as_its_hull_at_once_and_its_pieces_come_later(tmp
 
 def test_fill_later_starts_one_process_per_mesh_once(tmp_path):
     path = str(tmp_path / 'u.stl')
-    write_binary_stl(path, u_triangles())
+    write_binary_stl(path, u_bracket(200))
     from _arm1sim.description.limits import Limits
 
     cache = str(tmp_path / 'cache')
