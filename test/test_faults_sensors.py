@@ -16,12 +16,15 @@ races with one).
 import glob
 import math
 import os
+import struct
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 import unittest
 
+import numpy as np
 import rospkg
 import rospy
 import rostest
@@ -34,6 +37,8 @@ sys.path.insert(1, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'uni
 from faults_util import ClockPace, World, logged  # noqa: E402
 from rostest_util import clock_recorder, rosout_recorder, wait_for  # noqa: E402
 from urdf_snippets import joint, link, sdf_tower  # noqa: E402
+
+from _arm1sim.bench import dense_meshes  # noqa: E402
 
 # Real-time factors from /clock, as a share of the 3 s before (what the machine gives the
 # world now: other work may share it). Over subscriber churn (0.9-1.0 on an idle machine):
@@ -55,6 +60,35 @@ def sdf_box(pose='0 0 0.5 0 0 0', mass='1', size='0.1 0.1 0.1', uri=None, extra=
         '<sdf version="1.6"><model name="box"><pose>%s</pose><link name="body">'
         '<inertial><mass>%s</mass></inertial><collision name="c"><geometry>%s</geometry>'
         '</collision></link>%s</model></sdf>' % (pose, mass, geometry, extra)
+    )
+
+
+def cube_triangles(size):
+    """A closed cube, wound outward."""
+    c = [(x, y, z) for x in (0, size) for y in (0, size) for z in (0, size)]
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    return [t for a, b, d, e in quads for t in ((c[a], c[b], c[d]), (c[a], c[d], c[e]))]
+
+
+def write_mesh(path, tris):
+    """Triangles as a binary STL (written here: this Python may lack numpy-stl), an OBJ or a
+    COLLADA file (bench/dense_meshes.py), by the extension."""
+    if not path.endswith('.stl'):
+        dense_meshes.write_mesh(path, np.asarray(tris, dtype=float))
+        return
+    flat = [float(v) for t in tris for corner in t for v in corner]
+    with open(path, 'wb') as f:
+        f.write(b'broken mesh by test_faults_sensors'.ljust(80) + struct.pack('<I', len(tris)))
+        for i in range(len(tris)):
+            f.write(struct.pack('<12fH', 0, 0, 0, *flat[9 * i : 9 * i + 9], 0))
+
+
+def mesh_part(path):
+    """A free part whose one collision is the mesh at ``path``."""
+    return (
+        '<robot name="part"><link name="part"><inertial><mass value="0.1"/><inertia ixx="1e-4" '
+        'iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry>'
+        '<mesh filename="file://%s"/></geometry></collision></link></robot>' % path
     )
 
 
@@ -189,6 +223,41 @@ class FaultsSensors(unittest.TestCase):
         self.refused(self.sdf_srv, 'dtd_box', laughs, "'dtd_box'", '<!DOCTYPE>')
         self.refused(self.sdf_srv, 'empty_box', '', "'empty_box'")
         self.refused(self.sdf_srv, 'html_box', '<html/>', "'html_box'", 'html')
+        self.assert_world_runs()
+
+    def test_broken_meshes_are_repaired_or_left_out_naming_the_file_and_the_world_runs(self):
+        """NaN and infinite vertices, out-of-range OBJ indices, no triangle at all, a
+        COLLADA index past its source: pybullet crashed on the first two or let the part
+        fall through the ground. Each spawns with a warning naming its file, and goes."""
+        folder = tempfile.mkdtemp(prefix='arm1-broken-meshes-')
+        cube = np.array(cube_triangles(0.05))
+        bad = cube.copy()
+        bad[3, 1, 0] = float('nan')
+        worse = cube.copy()
+        worse[5, 2, 2] = float('inf')
+        files = {
+            'nan.stl': ('left out', bad),
+            'inf.stl': ('left out', worse),
+            'empty.stl': ('no triangle', cube[:0]),
+            'range.obj': ('not in the file', cube),
+            'range.dae': ('beyond the limits', cube),
+        }
+        for name, (_, tris) in files.items():
+            write_mesh(os.path.join(folder, name), tris)
+        with open(os.path.join(folder, 'range.obj'), 'a') as f:
+            f.write('f 1 2 100000\n')
+        with open(os.path.join(folder, 'range.dae')) as f:
+            text = f.read()
+        with open(os.path.join(folder, 'range.dae'), 'w') as f:
+            f.write(text.replace('<p>0 1 2 ', '<p>0 1 9999 '))
+        for i, (name, (words, _)) in enumerate(files.items()):
+            path = os.path.join(folder, name)
+            model = 'broken_%d' % i
+            mark = time.monotonic()
+            self.spawned(self.urdf_srv, model, mesh_part(path), pose(x=2.0 + i, z=0.2))
+            self.assertTrue(logged(self.rosout, mark, path, words), '%s: not said' % name)
+        for i in range(len(files)):  # (test_broken_meshes.py: repaired parts rest on a ground)
+            self.gone('broken_%d' % i)
         self.assert_world_runs()
 
     def test_sdf_mesh_uris_that_climb_out_are_refused_and_missing_ones_left_out(self):

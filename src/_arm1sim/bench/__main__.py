@@ -58,6 +58,7 @@ PLAN = [
     ('laser', 'laser', ['--count', '300'], 3, ['--count', '10'], 1),
     ('depth_camera', 'depth', ['--count', '60'], 3, ['--count', '3'], 1),
     ('concave_mesh', 'concave_mesh', ['--count', '2000'], 3, ['--count', '50'], 1),
+    ('mesh_cache_fill', 'mesh_cache_fill', ['--triangles', '20000'], 3, ['--triangles', '2000'], 1),
     ('profile', 'standin', ['--seconds', '4', '--arms', '1', '--profile'], 1, None, 0),
     ('latency', 'latency', ['--commands', '1000'], 3, ['--commands', '100'], 1),
     ('startup', 'startup', [], 5, [], 1),

@@ -12,8 +12,6 @@ from typing import List
 
 import numpy as np
 
-from ..physics.stl import write_binary_stl
-
 W, H, T, D = 0.04, 0.03, 0.01, 0.02  # width, height, prong thickness, depth (m)
 BULGE = 0.0003  # m: how far a face's middle stands out of its plane
 
@@ -62,6 +60,8 @@ def write_mesh(path: str, triangles: np.ndarray) -> None:
     """The triangles (metres) as .stl, .obj or .dae (in millimetres, <unit meter="0.001">),
     by the path's extension."""
     if path.lower().endswith('.stl'):
+        from ..physics.stl import write_binary_stl  # numpy-stl: STL only (rostests lack it)
+
         write_binary_stl(path, triangles, 'dense mesh by _arm1sim.bench.dense_meshes')
     elif path.lower().endswith('.obj'):
         with open(path, 'w') as f:

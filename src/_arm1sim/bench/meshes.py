@@ -9,18 +9,21 @@ master needed.
 from __future__ import annotations
 
 import os
+import signal
 import tempfile
 import time
-from typing import Any, Dict
+from typing import Any, Dict, List
 
 import pybullet as p
 
 from ..description.limits import Limits
 from ..description.sdf_world import WorldConfig
 from ..paths import repo_root
+from ..physics import mesh_jobs
 from ..physics.mesh_cache import collision_mesh
 from ..physics.mesh_reading import mesh_triangles
 from ..sim.simulation import Simulation
+from .dense_meshes import u_bracket, write_mesh
 from .probes import median_ms
 
 ROBOT = """<robot name="holder"><link name="world"/>
@@ -94,3 +97,64 @@ def concave_mesh(count: int = 2000) -> Dict[str, Any]:
         'step_ms': cached['step_ms'],
         'step_hull_ms': hull['step_ms'],
     }
+
+
+DENSE = 20000  # triangles per mesh: a SolidWorks export's link (14-18 k)
+
+
+def _chain(meshes: List[str]) -> str:
+    """A robot of one link per mesh, each on a revolute joint (not lumped)."""
+    inertia = '<inertia ixx="1e-5" iyy="1e-5" izz="1e-5" ixy="0" ixz="0" iyz="0"/>'
+    parts = []
+    for i, mesh in enumerate(meshes):
+        geometry = '<geometry><mesh filename="%s"/></geometry>' % mesh
+        parts.append(
+            '<link name="l%d"><inertial><mass value="0.05"/>%s</inertial><visual>%s</visual>'
+            '<collision>%s</collision></link>' % (i, inertia, geometry, geometry)
+        )
+        if i:
+            parts.append(
+                '<joint name="j%d" type="revolute"><parent link="l%d"/><child link="l%d"/>'
+                '<origin xyz="0 0 0.05"/><axis xyz="0 0 1"/>'
+                '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>' % (i, i - 1, i)
+            )
+    return '<robot name="dense">%s</robot>' % ''.join(parts)
+
+
+def cache_fill(triangles: int = DENSE) -> Dict[str, Any]:
+    """The cache's first fill (bench/dense_meshes.py's bumpy U of ``triangles``): CPU
+    seconds per 10 k triangles to read, check and cut a mesh into pieces with the cache
+    empty (cold) and to find them there (warm), for .stl, .obj and .dae; and the wall time
+    of a spawn of a 10-link model of such meshes with the cache empty (the pieces are made
+    after it, off the world: physics/mesh_jobs.py)."""
+    out: Dict[str, Any] = {'triangles': triangles}
+    tris = u_bracket(triangles)
+    per = 10000.0 / len(tris)
+    with tempfile.TemporaryDirectory(prefix='arm1-bench-fill-') as folder:
+        for ext in ('stl', 'obj', 'dae'):
+            path = os.path.join(folder, 'u.' + ext)
+            write_mesh(path, tris)
+            cache = os.path.join(folder, 'cache-' + ext)
+            t = time.process_time()
+            made = collision_mesh(path, (1.0, 1.0, 1.0), cache)
+            out['cold_s_per_10k_' + ext] = (time.process_time() - t) * per
+            t = time.process_time()
+            again = collision_mesh(path, (1.0, 1.0, 1.0), cache)
+            out['warm_s_per_10k_' + ext] = (time.process_time() - t) * per
+            assert again.cached and again.path == made.path
+        meshes = [os.path.join(folder, 'u.' + ('stl', 'obj', 'dae')[i % 3]) for i in range(10)]
+        os.environ['XDG_CACHE_HOME'] = os.path.join(folder, 'spawn-cache')
+        sim = Simulation(WorldConfig())
+        try:
+            t = time.perf_counter()
+            sim.spawn_urdf('dense', _chain(meshes))
+            out['spawn_10_links_cold_s'] = time.perf_counter() - t
+        finally:
+            sim.close()
+            for pid in mesh_jobs.pids:  # the cache it fills goes with this folder
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                    os.waitpid(pid, 0)
+                except (ProcessLookupError, ChildProcessError):
+                    pass
+    return out

@@ -169,6 +169,39 @@ ROWS += [
     ('concave mesh, a box resting on it: step (ms)', 'concave_mesh', 'step_ms', '', None, '%.2f'),
     ('  the same on its convex hull: step (ms)', 'concave_mesh', 'step_hull_ms', '', None, '%.2f'),
 ]
+# the mesh cache's first fill (bench/meshes.py cache_fill): a bumpy U of 20 k triangles
+ROWS += [
+    (
+        'mesh cache fill, cold: CPU s per 10 k triangles (.%s)' % ext,
+        'mesh_cache_fill',
+        'cold_s_per_10k_' + ext,
+        '',
+        None,
+        '%.2f',
+    )
+    for ext in ('stl', 'obj', 'dae')
+]
+ROWS += [
+    (
+        '  warm, from the cache (.%s)' % ext,
+        'mesh_cache_fill',
+        'warm_s_per_10k_' + ext,
+        '',
+        None,
+        '%.4f',
+    )
+    for ext in ('stl', 'obj', 'dae')
+]
+ROWS += [
+    (
+        'spawn of 10 links of 20 k triangles, cache empty (s)',
+        'mesh_cache_fill',
+        'spawn_10_links_cold_s',
+        '',
+        None,
+        '%.2f',
+    ),
+]
 # the browser view (bench/web.py): gazebo.launch web:=true at real time, page closed and open in
 # headless Chromium; then arm1's camera subscribed: images per sim second against its update_rate
 ROWS += [

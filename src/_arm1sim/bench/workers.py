@@ -18,7 +18,7 @@ from .depth import depth_frame
 from .idle import idle_world
 from .latency import latency, publisher
 from .launched import realtime, seed_goal, startup
-from .meshes import concave_mesh
+from .meshes import cache_fill, concave_mesh
 from .moveit import idle_move_group, planning_times
 from .render import render
 from .sensors import laser_scan
@@ -43,6 +43,7 @@ KINDS: Dict[str, Callable[..., Any]] = {
     'big_description': big_description_bench,
     'big_description_client': big_description_client,
     'concave_mesh': concave_mesh,
+    'mesh_cache_fill': cache_fill,
     'moveit_planning': planning_times,
     'moveit_idle': idle_move_group,
 }
@@ -55,6 +56,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser.add_argument('--arms', type=int)
     parser.add_argument('--commands', type=int)
     parser.add_argument('--count', type=int)
+    parser.add_argument('--triangles', type=int)
     parser.add_argument('--rate', type=float)
     parser.add_argument('--profile', action='store_true', default=None)
     parser.add_argument('--camera', action='store_true', default=None)

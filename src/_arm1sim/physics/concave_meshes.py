@@ -65,7 +65,7 @@ def concave_collisions(
                 changed = True
                 continue
             for note in result.notes:
-                log.warning("link '%s': %s", name, note)
+                log.warning("link '%s': collision mesh %s: %s", name, filename, note)
             if result.empty:
                 log.warning(
                     "link '%s': collision mesh %s has no triangle to collide with: left out "

@@ -20,7 +20,7 @@ from ..description.limits import Limits
 from .convex_pieces import CONCAVE_DEPTH, concavity, patch_hulls
 from .mesh_reading import checked_triangles
 
-VERSION = 3  # of the cached files' format; a change makes new ones (3: checked meshes)
+VERSION = 4  # of the cached files' format; a change makes new ones (4: checked meshes)
 # More pieces than this and pybullet's loader stalls (a 1446-piece file of a 20k-triangle
 # bumpy part took minutes; 1300 of its pieces 0.2 s): the mesh collides as its hull.
 MAX_PIECES = 1024
@@ -55,7 +55,7 @@ class CollisionMesh:
     path: Optional[str]
     concavity: float  # metres, at its scale (past CONCAVE_DEPTH: at least this)
     cached: bool  # read from the cache, nothing computed
-    notes: List[str] = field(default_factory=list)  # what was wrong and done, to be said
+    notes: List[str] = field(default_factory=list)  # what was wrong and done (no path)
     empty: bool = False  # no triangle left: nothing to collide with
     deferred: bool = False  # its hull for now: the pieces are still to be made
 
@@ -100,9 +100,8 @@ def collision_mesh(
     if len(triangles) > limits.concave_mesh_triangles:
         # the check itself grows as triangles x hull vertices: not made past the limit
         notes.append(
-            '%s: %d triangles, over the limit concave_mesh_triangles (%d): it collides as '
-            'its convex hull, concave or not'
-            % (path, len(triangles), limits.concave_mesh_triangles)
+            '%d triangles, over the limit concave_mesh_triangles (%d): it collides as '
+            'its convex hull, concave or not' % (len(triangles), limits.concave_mesh_triangles)
         )
         _atomic_write(info_path, json.dumps(info))
         return CollisionMesh(hull, 0.0, False, notes)
@@ -117,8 +116,8 @@ def collision_mesh(
             info['concave'] = True
         else:
             notes.append(
-                '%s: %d convex pieces, more than pybullet loads in time (%d): it collides '
-                'as its convex hull' % (path, pieces, MAX_PIECES)
+                '%d convex pieces, more than pybullet loads in time (%d): it collides '
+                'as its convex hull' % (pieces, MAX_PIECES)
             )
     _atomic_write(info_path, json.dumps(info))
     return CollisionMesh(hulls_path if info['concave'] else hull, depth, False, notes)

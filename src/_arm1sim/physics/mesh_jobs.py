@@ -25,6 +25,7 @@ log = logging.getLogger('_arm1sim.physics')
 
 Job = Tuple[str, Tuple[float, float, float]]
 _started: Set[Tuple[str, Tuple[float, float, float], str]] = set()  # once per world process
+pids: List[int] = []  # the processes started, for whoever must wait for or end them
 
 
 def fill_later(jobs: Sequence[Job], cache_dir: str, limits: Limits) -> Optional[int]:
@@ -46,6 +47,7 @@ def fill_later(jobs: Sequence[Job], cache_dir: str, limits: Limits) -> Optional[
         start_new_session=True,  # a Ctrl-C to the world's group leaves it to finish
     )
     log.info('convex pieces of %d mesh(es) being made in process %d', len(todo), proc.pid)
+    pids.append(proc.pid)
     return proc.pid
 
 

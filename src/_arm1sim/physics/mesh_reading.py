@@ -5,7 +5,7 @@ applies them).
 Read checked (``checked_triangles``): pybullet crashes the world on a NaN vertex or an
 out-of-range face index and makes a body with an infinite vertex fall through everything,
 so what it is handed is repaired first: such triangles are left out, each kind of repair
-said once with the file's name.
+said once.
 """
 
 from __future__ import annotations
@@ -31,8 +31,9 @@ def mesh_triangles(path: str) -> np.ndarray:
 
 def checked_triangles(path: str) -> Tuple[np.ndarray, List[str]]:
     """The mesh's triangles with every vertex finite and every face index in range, and
-    what was repaired to get them: one message per kind of fault, naming the file and how
-    many triangles were left out. MeshReadError for a file that cannot be read at all."""
+    what was repaired to get them: one message per kind of fault, saying how many were
+    left out (the caller names the file: the cache keeps them by content, not by path).
+    MeshReadError, naming the file, for a file that cannot be read at all."""
     kind = mesh_kind(path)
     notes: List[str] = []
     try:
@@ -41,15 +42,11 @@ def checked_triangles(path: str) -> Tuple[np.ndarray, List[str]]:
         elif kind == '.obj':
             triangles, bad = _obj_triangles(path)
             if bad:
-                notes.append(
-                    '%s: %d faces name a vertex that is not in the file: left out' % (path, bad)
-                )
+                notes.append('%d faces name a vertex that is not in the file: left out' % bad)
         elif kind == '.dae':
             triangles, bad = _dae_triangles(path)
             if bad:
-                notes.append(
-                    '%s: %d triangles name a vertex that is not in the file: left out' % (path, bad)
-                )
+                notes.append('%d triangles name a vertex that is not in the file: left out' % bad)
         else:
             raise MeshReadError('%s: not an .stl, .obj or .dae mesh' % path)
     except (OSError, ValueError, IndexError) as exc:
@@ -59,8 +56,8 @@ def checked_triangles(path: str) -> Tuple[np.ndarray, List[str]]:
     finite = np.isfinite(triangles).all(axis=(1, 2))
     if not finite.all():
         notes.append(
-            '%s: %d of %d triangles have a NaN or infinite vertex: left out'
-            % (path, int((~finite).sum()), len(triangles))
+            '%d of %d triangles have a NaN or infinite vertex: left out'
+            % (int((~finite).sum()), len(triangles))
         )
         triangles = triangles[finite]
     return triangles, notes
