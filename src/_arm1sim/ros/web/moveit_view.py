@@ -122,19 +122,37 @@ class MoveItView:
             mesh = self._mesh(shape)
             if mesh is None:
                 continue
-            pos, quat = _compose(origin, shape.pose)
-            self._handles['objects'].append(
-                self.view.server.scene.add_mesh_simple(
-                    '/moveit/objects/%s/%d' % (obj.id or 'object', k),
-                    np.asarray(mesh.vertices, dtype=np.float32),
-                    np.asarray(mesh.faces, dtype=np.uint32),
-                    color=rgb,
-                    opacity=OBJECT_OPACITY,
-                    position=pos,
-                    wxyz=(quat[3], quat[0], quat[1], quat[2]),
-                    flat_shading=True,
-                )
+            self._add(
+                'objects',
+                '/moveit/objects/%s/%d' % (obj.id or 'object', k),
+                mesh,
+                _compose(origin, shape.pose),
+                rgb,
+                OBJECT_OPACITY,
             )
+
+    def _add(
+        self,
+        layer: str,
+        name: str,
+        mesh: Any,
+        pose: Pose,
+        rgb: Tuple[float, float, float],
+        opacity: float,
+    ) -> None:
+        pos, quat = pose
+        self._handles[layer].append(
+            self.view.server.scene.add_mesh_simple(
+                name,
+                np.asarray(mesh.vertices, dtype=np.float32),
+                np.asarray(mesh.faces, dtype=np.uint32),
+                color=rgb,
+                opacity=opacity,
+                position=pos,
+                wxyz=(quat[3], quat[0], quat[1], quat[2]),
+                flat_shading=True,
+            )
+        )
 
     @staticmethod
     def _mesh(shape: Any) -> Any:
@@ -202,18 +220,13 @@ class MoveItView:
             mesh = self.view.meshes.get(v)
             if link_pose is None or mesh is None:
                 continue
-            pos, quat = _compose(link_pose, v.pose)
-            self._handles['ghost'].append(
-                self.view.server.scene.add_mesh_simple(
-                    '/moveit/ghost/%d/%d' % (n, k),
-                    np.asarray(mesh.vertices, dtype=np.float32),
-                    np.asarray(mesh.faces, dtype=np.uint32),
-                    color=GHOST_RGB,
-                    opacity=GHOST_OPACITY,
-                    position=pos,
-                    wxyz=(quat[3], quat[0], quat[1], quat[2]),
-                    flat_shading=True,
-                )
+            self._add(
+                'ghost',
+                '/moveit/ghost/%d/%d' % (n, k),
+                mesh,
+                _compose(link_pose, v.pose),
+                GHOST_RGB,
+                GHOST_OPACITY,
             )
 
     def _fk_poses(self, links: List[str], robot_state: Any) -> Dict[str, Pose]:
