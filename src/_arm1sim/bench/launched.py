@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import os
 import time
 from typing import Any, Dict, List, Tuple
 
+from ..paths import repo_path
 from .probes import cpu_seconds, peak_rss_mb
 
 PROBE = '/bench_probe'
@@ -12,10 +14,13 @@ WINDOW = 4.0  # wall s a pace is watched over, before a hostile request and from
 
 
 def launch_and_wait(session: Any, *args: str, timeout: float = 60) -> None:
-    """``roslaunch arm1 gazebo.launch gui:=false ARGS``, then this process's probe node."""
+    """``roslaunch arm1 gazebo.launch gui:=false ARGS``, then this process's probe node. By
+    path: another file named gazebo.launch in the package (a test robot's MoveIt config)
+    makes roslaunch refuse the package-relative name."""
     import rospy
 
-    session.roslaunch('arm1', 'gazebo.launch', 'gui:=false', *args)
+    launch = repo_path('launch', 'gazebo.launch')
+    session.start('roslaunch', launch, 'gui:=false', *args, quiet=True)
     if not session.wait_for_master(timeout):
         raise RuntimeError('master did not start')
     rospy.init_node(PROBE.lstrip('/'), anonymous=True, disable_signals=True)
@@ -60,7 +65,8 @@ def startup() -> Dict[str, Any]:
 
 def realtime(seconds: float) -> Dict[str, float]:
     """At real_time_factor 1: measured RTF, joint_states rate in sim time, the world's CPU
-    and peak RSS."""
+    (per wall second, and per simulated second: what a step costs, whatever the RTF a loaded
+    machine allowed) and peak RSS, with the 1-minute load average."""
     import rospy
     from sensor_msgs.msg import JointState
 
@@ -92,6 +98,8 @@ def realtime(seconds: float) -> Dict[str, float]:
         'rtf': (c1[1] - c0[1]) / (c1[0] - c0[0]),
         'joint_states_hz': (len(window) - 1) / (window[-1] - window[0]),
         'cpu_core_fraction': (cpu1 - cpu0) / (w1 - w0),
+        'cpu_per_sim_s': (cpu1 - cpu0) / max(c1[1] - c0[1], 1e-9),
+        'load_1min': os.getloadavg()[0],
         'peak_rss_mb': rss,
         'seconds': w1 - w0,
     }

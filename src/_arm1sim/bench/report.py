@@ -31,6 +31,14 @@ ROWS = [
         '%.3f',
     ),
     (
+        '  world CPU per simulated second at real time (core-seconds)',
+        'realtime',
+        'cpu_per_sim_s',
+        '',
+        None,
+        '%.3f',
+    ),
+    (
         '  the floor: empty world, no robot (fraction of a core)',
         'idle_world',
         'cpu_core_fraction',

@@ -12,7 +12,7 @@ PROFILE_PARTS: List[Tuple[str, Callable[[str, str], bool]]] = [
         'pybullet joint read / torque write',
         lambda f, fn: 'getJointStates' in fn or 'setJointMotorControlArray' in fn,
     ),
-    ('controllers, PID, controller manager (Python)', lambda f, fn: '/arm1/control/' in f),
+    ('controllers, PID, controller manager (Python)', lambda f, fn: '/_arm1sim/control/' in f),
     (
         'hardware interface, robot, simulation step (Python)',
         lambda f, fn: any(m in f for m in ('robot_hw_sim.py', 'physics/robot.py', 'simulation.py')),
