@@ -285,6 +285,42 @@ class MoveItCommander(unittest.TestCase):
             self.assertEqual(headers.get('type'), cls._type, name)
             self.assertEqual(headers.get('md5sum'), cls._md5sum, name)
 
+    def test_9_pick_and_place_actions(self):
+        """pick() and place() through move_group's pickup and place actions, with a grasp and
+        a place pose of the script's own (a planning-scene object, away from test 7's cube)."""
+        from moveit_msgs.msg import Grasp
+        from trajectory_msgs.msg import JointTrajectoryPoint
+
+        part = PoseStamped()
+        part.header.frame_id = 'world'
+        part.pose.position.x, part.pose.position.y, part.pose.position.z = 0.35, -0.15, CUBE / 2
+        part.pose.orientation.w = 1.0
+        self.scene.add_box('part', part, size=(CUBE, CUBE, CUBE))
+        self.assertTrue(wait_for(lambda: 'part' in self.scene.get_known_object_names(), 4))
+        g = Grasp(id='from_above')
+        g.grasp_pose.header.frame_id = 'world'
+        g.grasp_pose.pose = pose(0.35, -0.15, CUBE / 2)
+        for motion, z in ((g.pre_grasp_approach, -1.0), (g.post_grasp_retreat, 1.0)):
+            motion.direction.header.frame_id = 'world'
+            motion.direction.vector.z = z
+            motion.min_distance, motion.desired_distance = 0.05, 0.08
+        for posture, q in ((g.pre_grasp_posture, 0.0), (g.grasp_posture, 0.03)):
+            posture.joint_names = ['left_finger_joint']
+            posture.points = [
+                JointTrajectoryPoint(positions=[q], time_from_start=rospy.Duration(0.5))
+            ]
+        self.assertTrue(self.arm.pick('part', [g]))
+        self.assertIn('part', self.scene.get_attached_objects())
+        goal = PoseStamped()
+        goal.header.frame_id = 'world'
+        goal.pose.position.x, goal.pose.position.y, goal.pose.position.z = 0.25, -0.25, CUBE / 2
+        goal.pose.orientation.w = 1.0
+        self.assertTrue(self.arm.place('part', goal))
+        self.assertEqual(self.scene.get_attached_objects(['part']), {})
+        placed = self.scene.get_object_poses(['part'])['part'].position
+        self.assertLess(math.dist((placed.x, placed.y), (0.25, -0.25)), 0.02, placed)
+        self.scene.remove_world_object('part')
+
     def _line(self, xyz):
         """The tcp straight to xyz (pointing down), as a Cartesian path, executed."""
         plan, fraction = self.arm.compute_cartesian_path([pose(*xyz)], 0.01, 0.0)

@@ -856,19 +856,13 @@ class MoveGroupCommander:
             )
             return False
         if isinstance(location, (Pose, PoseStamped)):
-            stamped = self._stamped(location)
-            loc = PlaceLocation(id='location0', place_pose=stamped)
-            loc.post_place_retreat.direction.header.frame_id = self._eef_link
-            locations = [loc]
+            locations = self._place_locations([location])
         elif isinstance(location, PlaceLocation):
             locations = [location]
-        elif isinstance(location, list):
-            locations = [
-                x
-                if isinstance(x, PlaceLocation)
-                else PlaceLocation(id='location%d' % i, place_pose=self._stamped(x))
-                for i, x in enumerate(location)
-            ]
+        elif isinstance(location, list) and all(isinstance(x, PlaceLocation) for x in location):
+            locations = list(location)
+        elif isinstance(location, list) and all(isinstance(x, PoseStamped) for x in location):
+            locations = self._place_locations(location)
         elif location is None:
             locations = []
         else:
@@ -878,6 +872,24 @@ class MoveGroupCommander:
             )
         goal = PlaceGoal(attached_object_name=object_name, place_locations=locations)
         return self._manipulate(self._place, goal, 'Place', plan_only)
+
+    def _place_locations(self, poses) -> List[PlaceLocation]:
+        """MoveGroupInterface::posesToPlaceLocations: approach 0.1-0.2 m down the model
+        frame's z, retreat up to 0.2 m back along the end effector's x; the detach posture is
+        the attached object's."""
+        out = []
+        for pose in poses:
+            loc = PlaceLocation(place_pose=self._stamped(pose))
+            loc.pre_place_approach.direction.vector.z = -1.0
+            loc.pre_place_approach.direction.header.frame_id = self._model.model_frame
+            loc.pre_place_approach.min_distance = 0.1
+            loc.pre_place_approach.desired_distance = 0.2
+            loc.post_place_retreat.direction.vector.x = -1.0
+            loc.post_place_retreat.direction.header.frame_id = self._eef_link
+            loc.post_place_retreat.min_distance = 0.0
+            loc.post_place_retreat.desired_distance = 0.2
+            out.append(loc)
+        return out
 
     def _manipulate(self, ac, goal, what: str, plan_only: bool) -> bool:
         """A pickup or place goal with the group's settings (constructPickupGoal,
