@@ -16,6 +16,7 @@ races with one).
 import glob
 import math
 import os
+import shutil
 import struct
 import subprocess
 import sys
@@ -230,6 +231,7 @@ class FaultsSensors(unittest.TestCase):
         COLLADA index past its source: pybullet crashed on the first two or let the part
         fall through the ground. Each spawns with a warning naming its file, and goes."""
         folder = tempfile.mkdtemp(prefix='arm1-broken-meshes-')
+        self.addCleanup(shutil.rmtree, folder, True)
         cube = np.array(cube_triangles(0.05))
         bad = cube.copy()
         bad[3, 1, 0] = float('nan')

@@ -151,6 +151,8 @@ def test_a_dense_mesh_collides_as_its_hull_at_once_and_its_pieces_come_later(tmp
     from _arm1sim.description.limits import Limits
 
     spec = {'cache_dir': cache, 'limits': dataclasses.asdict(Limits()), 'jobs': started[0]}
+    assert mesh_jobs.main([json.dumps(spec)]) == 0 and not os.path.exists(cache)  # removed: stop
+    os.makedirs(cache, exist_ok=True)  # as fill_later makes it
     assert mesh_jobs.main([json.dumps(spec)]) == 0
     later = concave_collisions(part(path), cache)
     pieces = later.split('filename="')[1].split('"')[0]

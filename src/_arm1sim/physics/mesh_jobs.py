@@ -35,6 +35,7 @@ def fill_later(jobs: Sequence[Job], cache_dir: str, limits: Limits) -> Optional[
     if not todo:
         return None
     _started.update((path, scale, cache_dir) for path, scale in todo)
+    os.makedirs(cache_dir, exist_ok=True)  # its going away later tells the process to stop
     argument = json.dumps(
         {'cache_dir': cache_dir, 'limits': dataclasses.asdict(limits), 'jobs': todo}
     )
@@ -58,6 +59,8 @@ def main(argv: List[str]) -> int:
     spec = json.loads(argv[0])
     limits = Limits(**spec['limits'])
     for path, scale in spec['jobs']:
+        if not os.path.isdir(spec['cache_dir']):
+            break  # the cache was removed (a test's, a bench's): nobody waits for it
         try:
             collision_mesh(path, scale, spec['cache_dir'], limits)
         except (MeshReadError, OSError, ValueError):
