@@ -50,6 +50,14 @@ class MoveItCommander(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
+        try:
+            cls._set_up()
+        except BaseException:  # tearDownClass does not run after a failed setUpClass
+            cls._stop_launch()
+            raise
+
+    @classmethod
+    def _set_up(cls):
         args = [a for a in sys.argv[1:] if not a.startswith('__') and not a.startswith('--gtest')]
         cls.sim = args[0] == 'demo_gazebo.launch'
         env = dict(os.environ)
@@ -90,13 +98,18 @@ class MoveItCommander(unittest.TestCase):
     @classmethod
     def tearDownClass(cls):
         moveit_commander.roscpp_shutdown()
+        cls._stop_launch()
+
+    @classmethod
+    def _stop_launch(cls):
         if cls.launch is not None and cls.launch.poll() is None:
             os.killpg(cls.launch.pid, signal.SIGINT)
             try:
                 cls.launch.wait(20)
             except subprocess.TimeoutExpired:
                 os.killpg(cls.launch.pid, signal.SIGKILL)
-        cls.log.close()
+        if getattr(cls, 'log', None) is not None:
+            cls.log.close()
 
     @classmethod
     def _at(cls, goal, tol):
