@@ -36,9 +36,9 @@ LINKS: Dict[str, Tuple[Vec, float]] = {
     'link1': ((0.05, 0.05, 0.06), 0.08),
     'link2': ((0.03, 0.04, 0.12), 0.06),
     'link3': ((0.03, 0.04, 0.10), 0.05),
-    'link4': ((0.04, 0.05, 0.04), 0.04),
-    'finger_left': ((0.01, 0.012, 0.04), 0.01),
-    'finger_right': ((0.01, 0.012, 0.04), 0.01),
+    'link4': ((0.04, 0.05, 0.04), 0.08),
+    'finger_left': ((0.01, 0.012, 0.04), 0.02),
+    'finger_right': ((0.01, 0.012, 0.04), 0.02),
 }
 # joint: (parent, child, type, origin xyz, axis, lower, upper)
 JOINTS: List[Tuple[str, str, str, str, Vec, str, float, float]] = [
@@ -49,8 +49,9 @@ JOINTS: List[Tuple[str, str, str, str, Vec, str, float, float]] = [
     ('joint5', 'link4', 'finger_left', 'prismatic', (0.0, 0.012, 0.04), '0 1 0', 0.0, 0.015),
     ('joint6', 'link4', 'finger_right', 'prismatic', (0.0, -0.012, 0.04), '0 -1 0', 0.0, 0.015),
 ]
-# position controller gains by joint type (a desk arm's small servos)
-GAINS = {'revolute': (2.0, 0.01, 0.05), 'prismatic': (50.0, 0.0, 1.0)}
+# position controller gains by joint type (a desk arm's small servos): the wrist's inertia
+# about its axis is ~5e-5 kg m^2, so d stays well under I / dt (0.05) for a 1 ms step
+GAINS = {'revolute': (1.0, 0.05, 0.01), 'prismatic': (50.0, 0.0, 1.0)}
 
 
 def rounded_block(center: Vec, size: Vec, n: int) -> np.ndarray:

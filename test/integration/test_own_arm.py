@@ -115,5 +115,5 @@ def test_own_arm1_comes_up_cold_with_every_controller_running(own_arm):
     assert result['controllers'] == {n: 'running' for n in names}, launch_log[-3000:]
     assert "couldn't find the expected controller_manager" not in launch_log
     assert 'No module named' not in launch_log and 'Traceback' not in launch_log
-    assert result['positions']['joint1'] == pytest.approx(0.5, abs=0.05)
-    assert result['positions']['joint4'] == pytest.approx(-0.5, abs=0.05)
+    assert result['positions']['joint1'] == pytest.approx(0.5, abs=0.05), result
+    assert result['positions']['joint4'] == pytest.approx(-0.5, abs=0.05), result
