@@ -18,9 +18,14 @@ import numpy as np
 
 from ..description.limits import Limits
 from .convex_pieces import CONCAVE_DEPTH, concavity, patch_hulls
+from .mesh_hulls import hull_points, points_obj_text
 from .mesh_reading import checked_triangles
 
-VERSION = 4  # of the cached files' format; a change makes new ones (4: checked meshes)
+VERSION = 5  # of the cached files' format; a change makes new ones (5: hulls' points)
+# A mesh of more triangles that collides as its hull is handed to pybullet as its hull's
+# points (physics/mesh_hulls.py): pybullet's own hull of it would hold up the physics
+# thread (45 ms for 20 k triangles, seconds for millions).
+HULL_POINTS_ABOVE = 2000
 # More pieces than this and pybullet's loader stalls (a 1446-piece file of a 20k-triangle
 # bumpy part took minutes; 1300 of its pieces 0.2 s): the mesh collides as its hull.
 MAX_PIECES = 1024
@@ -68,11 +73,12 @@ def collision_mesh(
     defer_above: Optional[int] = None,
 ) -> CollisionMesh:
     """The mesh at ``path`` (scaled by ``scale``) as it should collide: its convex pieces
-    when it is concave, else itself, or its checked triangles when the file had to be
-    repaired (mesh_reading.checked_triangles). With ``defer_above``, a mesh of more
-    triangles whose pieces are not cached yet is answered with its hull (``deferred``)
-    and nothing is cached: a later call without it makes them. Raises MeshReadError for
-    an unreadable mesh."""
+    when it is concave, else its hull: the file itself, or its checked triangles when the
+    file had to be repaired (mesh_reading.checked_triangles), or for more than
+    HULL_POINTS_ABOVE triangles its hull's points (physics/mesh_hulls.py). With
+    ``defer_above``, a mesh of more triangles whose pieces are not cached yet is answered
+    with its hull (``deferred``) and nothing is cached: a later call without it makes them.
+    Raises MeshReadError for an unreadable mesh."""
     limits = limits or Limits()
     folder = cache_dir or default_cache_dir()
     with open(path, 'rb') as f:
@@ -83,7 +89,8 @@ def collision_mesh(
     info_path = os.path.join(folder, key + '.json')
     hulls_path = os.path.join(folder, key + '.obj')
     clean_path = os.path.join(folder, key + '.checked.obj')
-    known = _cached(info_path, hulls_path, clean_path)
+    points_path = os.path.join(folder, key + '.hull.obj')
+    known = _cached(info_path, hulls_path, clean_path, points_path)
     if known is not None:
         return known
     triangles, notes = checked_triangles(path)
@@ -93,10 +100,16 @@ def collision_mesh(
         info['empty'] = True
         _atomic_write(info_path, json.dumps(info))
         return CollisionMesh(None, 0.0, False, notes, empty=True)
-    if notes:  # pybullet is handed the repaired triangles, never the file
+    if len(triangles) > HULL_POINTS_ABOVE:  # its hull made here, not on the physics thread
+        _atomic_write(points_path, points_obj_text(hull_points(triangles)))
+        info['points'] = True
+        hull: Optional[str] = points_path
+    elif notes:  # pybullet is handed the repaired triangles, never the file
         _atomic_write(clean_path, obj_text(triangles))
         info['clean'] = True
-    hull = clean_path if notes else None
+        hull = clean_path
+    else:
+        hull = None
     if len(triangles) > limits.concave_mesh_triangles:
         # the check itself grows as triangles x hull vertices: not made past the limit
         notes.append(
@@ -123,7 +136,9 @@ def collision_mesh(
     return CollisionMesh(hulls_path if info['concave'] else hull, depth, False, notes)
 
 
-def _cached(info_path: str, hulls_path: str, clean_path: str) -> Optional[CollisionMesh]:
+def _cached(
+    info_path: str, hulls_path: str, clean_path: str, points_path: str
+) -> Optional[CollisionMesh]:
     """What the cache holds for this mesh, None when it holds nothing whole."""
     try:
         with open(info_path) as f:
@@ -131,7 +146,7 @@ def _cached(info_path: str, hulls_path: str, clean_path: str) -> Optional[Collis
         notes = [str(n) for n in info['notes']]
         if info.get('empty'):
             return CollisionMesh(None, 0.0, True, notes, empty=True)
-        hull = clean_path if info.get('clean') else None
+        hull = points_path if info.get('points') else clean_path if info.get('clean') else None
         if hull is not None and not os.path.exists(hull):
             return None
         if info['concave'] is False:
