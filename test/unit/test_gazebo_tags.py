@@ -50,6 +50,21 @@ def test_mu1_and_kp_kd_become_the_surface_and_contact_stiffness(sim):
     assert info[9] == pytest.approx(5e4) and info[8] == pytest.approx(KD_DEFAULT)
 
 
+def test_a_tags_value_attribute_counts_as_its_text(sim):
+    # sdformat's URDF reader takes <mu1 value="..."/> first (Hello Robot Stretch's form)
+    tags = (
+        '<gazebo reference="body"><mu1 value=" 0.7 "/><mu2 value="0.7">0.2</mu2>'
+        '<kp value="5e4"/></gazebo>'
+    )
+    assert parse_urdf(box_robot('b', tags)).gazebo_refs['body'] == {
+        'mu1': '0.7',
+        'mu2': '0.7',
+        'kp': '5e4',
+    }
+    info = dynamics(sim.spawn_urdf('b', box_robot('b', tags)).robot, 'body')
+    assert info[1] == pytest.approx(0.7**0.5) and info[9] == pytest.approx(5e4)
+
+
 def test_untagged_link_has_gazebos_default_mu_of_1(sim):
     robot = sim.spawn_urdf('b', box_robot('b')).robot
     assert dynamics(robot, 'body')[1] == pytest.approx(1.0)  # not pybullet's default 0.5

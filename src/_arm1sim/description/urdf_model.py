@@ -387,13 +387,21 @@ def parse_urdf(
                 said = blocks.setdefault(ref, {})
                 said.update(_collision_block(child, "<gazebo reference='%s'> <collision>" % ref))
             else:
-                tags[child.tag] = (child.text or '').strip()
+                tags[child.tag] = _key_value(child)
     # sdformat writes a reference's flat tags (mu1, kp, ...) over its <collision> blocks'
     for ref, said in blocks.items():
         for tag, text in said.items():
             model.gazebo_refs[ref].setdefault(tag, text)
     model.mimics = _checked_mimics(mimics, joints)
     return model
+
+
+def _key_value(tag: ET.Element) -> str:
+    """A ``<gazebo reference>`` tag's value as sdformat's URDF reader takes it: its ``value``
+    attribute when it has one (``<mu1 value="100.0"/>``, Hello Robot Stretch's), else its
+    text."""
+    value = tag.get('value')
+    return (value if value is not None else tag.text or '').strip()
 
 
 def _collision_block(block: ET.Element, where: str) -> Dict[str, str]:
