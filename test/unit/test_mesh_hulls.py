@@ -114,3 +114,30 @@ def test_a_2m_triangle_collision_mesh_costs_the_physics_thread_under_0_1_s(tmp_p
     # the next spawn finds it in the cache
     found = collision_mesh(path, (1, 1, 1), str(tmp_path / 'cache' / 'arm1' / 'collision_meshes'))
     assert found.cached and found.path and os.path.getsize(found.path) < 100_000
+
+
+def test_a_plain_obj_is_read_by_numpy_as_line_by_line(tmp_path, monkeypatch):
+    from _arm1sim.physics import mesh_reading
+
+    plain = (
+        '# plain\no part\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\n'
+        'f 1 2 3\nf 1 2 4\nf 1 2 9\nf 0 3 4\n'
+    )
+    others = [
+        plain.replace('f 1 2 4', 'f 1/1 2/1 4/1'),  # slashes
+        plain.replace('f 1 2 4', 'f 1 2 -1'),  # counted back
+        plain.replace('v 0 0 1', ' v 0 0 1'),  # indented
+        plain.replace('f 1 2 4', 'f 1 2 4 3'),  # a quad
+    ]
+    assert mesh_reading._plain_obj_triangles(plain.encode()) is not None
+    for text in others:
+        assert mesh_reading._plain_obj_triangles(text.encode()) is None
+    for i, text in enumerate([plain] + others):
+        path = str(tmp_path / ('m%d.obj' % i))
+        with open(path, 'w') as f:
+            f.write(text)
+        fast = mesh_reading._obj_triangles(path)
+        with monkeypatch.context() as m:
+            m.setattr(mesh_reading, '_plain_obj_triangles', lambda data: None)
+            slow = mesh_reading._obj_triangles(path)
+        assert fast[1] == slow[1] == 2 and np.array_equal(fast[0], slow[0])

