@@ -209,6 +209,22 @@ ROWS += [
         None,
         '%.2f',
     ),
+    (
+        '  its caller thread: CPU s',
+        'mesh_cache_fill',
+        'spawn_10_links_caller_cpu_s',
+        '',
+        None,
+        '%.2f',
+    ),
+    (
+        '  its physics thread: CPU s',
+        'mesh_cache_fill',
+        'spawn_10_links_physics_cpu_s',
+        '',
+        None,
+        '%.2f',
+    ),
 ]
 # the browser view (bench/web.py): gazebo.launch web:=true at real time, page closed and open in
 # headless Chromium; then arm1's camera subscribed: images per sim second against its update_rate
