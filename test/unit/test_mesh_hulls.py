@@ -8,6 +8,7 @@ import time
 
 import numpy as np
 
+from _arm1sim.bench.dense_meshes import cube_grid_stl
 from _arm1sim.description.sdf_world import WorldConfig
 from _arm1sim.physics.mesh_cache import collision_mesh
 from _arm1sim.physics.mesh_hulls import hull_points
@@ -67,29 +68,9 @@ def test_a_small_mesh_keeps_all_its_corners():
     assert np.abs(corners[:, None, :] - points[None]).max(axis=2).min(axis=1).max() < 1e-12
 
 
-def write_cubes_stl(path, count, size=0.002):
-    """``count`` cubes of 12 triangles on a 3-d grid, written as a binary STL by numpy."""
-    corner = np.array([(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
-    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
-    cube = (
-        np.array([corner[list(t)] for a, b, d, e in quads for t in ((a, b, d), (a, d, e))]) * size
-    )
-    side = int(np.ceil(count ** (1 / 3)))
-    at = np.stack(np.unravel_index(np.arange(count), (side,) * 3), axis=1) * 2 * size
-    tris = (cube[None] + at[:, None, None, :]).reshape(-1, 3, 3).astype(np.float32)
-    record = np.dtype([('n', '<f4', 3), ('v', '<f4', (3, 3)), ('a', '<u2')])
-    data = np.zeros(len(tris), dtype=record)
-    data['v'] = tris
-    with open(path, 'wb') as f:
-        f.write(b'2M triangles by test_mesh_hulls'.ljust(80))
-        f.write(np.uint32(len(tris)).tobytes())
-        data.tofile(f)
-    return np.ptp(tris.reshape(-1, 3), axis=0)  # the grid's extent
-
-
 def test_a_2m_triangle_collision_mesh_costs_the_physics_thread_under_0_1_s(tmp_path, monkeypatch):
     path = str(tmp_path / 'dense.stl')
-    extent = write_cubes_stl(path, 2_000_000 // 12 + 1)
+    extent = cube_grid_stl(path, 2_000_000 // 12 + 1)
     monkeypatch.setenv('XDG_CACHE_HOME', str(tmp_path / 'cache'))
     urdf = (
         '<robot name="dense"><link name="l"><inertial><mass value="1"/><inertia ixx="1e-3" '
