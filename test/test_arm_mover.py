@@ -57,12 +57,15 @@ class ArmMover(WorldTestCase):
 
     def test_02_out_of_range_requests_are_clamped_with_a_warning(self):
         start = time.monotonic()
-        # joint1's range is set to [-1.57, 1.0] in the launch file; joint3's is the URDF's
+        # joint1's range is set to [-1.57, 1.0] in the launch file; joint4's is the URDF's.
+        # Not joint3 to its lower end (-1.0): that fold sometimes flips the arm up against
+        # joint2's upper stop, where it stays (1 run in 4, the same before 2026-11-27; left
+        # open in the closing note), whatever arm_mover asked.
         before = rospy.Time.now()
-        resp = self.safe_move(3.0, 0.6, -2.0, -0.4)
+        resp = self.safe_move(3.0, 0.6, 0.3, -2.0)
         after = rospy.Time.now()
         self.assertGreater(resp.time_elapsed.to_sec(), 0.0)
-        self.assertTrue(self.was_there((1.0, 0.6, -1.0, -0.4), before, after))
+        self.assertTrue(self.was_there((1.0, 0.6, 0.3, -0.8), before, after))
 
         def texts():
             return [m.msg for m in self.rosout.since(start) if m.name == '/arm_mover']
@@ -78,7 +81,7 @@ class ArmMover(WorldTestCase):
             texts(),
         )
         self.assertTrue(
-            any('joint3 = -2.000 is out of range [-1.000, 1.570]' in t for t in texts()), texts()
+            any('joint4 = -2.000 is out of range [-0.800, 1.570]' in t for t in texts()), texts()
         )
 
     def test_03_unreachable_target_answers_with_the_timeout_error(self):
