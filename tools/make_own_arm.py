@@ -8,15 +8,14 @@ transmissions, a camera, a controllers.yaml of effort PID position controllers, 
 
 It is what docs/own-arm.md walks through and what test/integration/test_own_arm.py builds
 in a workspace of its own over ours. Four arm joints and two gripper fingers (joint1..joint6),
-six ``effort_controllers/JointPositionController``s. The meshes are closed shells, concave
-like a servo bracket (three rounded blocks in a U), tessellated to about ``--triangles``
-each, as a CAD exporter's are. Deterministic: same bytes on every run.
+six ``effort_controllers/JointPositionController``s. The meshes are bench.dense_meshes'
+closed, concave U-bracket, stretched to each link and tessellated to about ``--triangles``,
+as a CAD exporter's are. Deterministic: same bytes on every run.
 """
 
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import sys
 from typing import Dict, List, Tuple
@@ -26,6 +25,7 @@ import numpy as np
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO_ROOT, 'src'))
 
+from _arm1sim.bench import dense_meshes  # noqa: E402
 from _arm1sim.physics.stl import write_binary_stl  # noqa: E402
 
 Vec = Tuple[float, float, float]
@@ -54,47 +54,12 @@ JOINTS: List[Tuple[str, str, str, str, Vec, str, float, float]] = [
 GAINS = {'revolute': (1.0, 0.05, 0.01), 'prismatic': (50.0, 0.0, 1.0)}
 
 
-def rounded_block(center: Vec, size: Vec, n: int) -> np.ndarray:
-    """A closed, outward-wound superellipsoid shell (exponent 0.2: a box with rounded
-    edges, as CAD fillets it) of 2 * n * (n // 2) triangles."""
-    nu, nv = n, max(3, n // 2)
-    u = np.linspace(-math.pi, math.pi, nu + 1)
-    v = np.linspace(-math.pi / 2, math.pi / 2, nv + 1)
-
-    def f(w: np.ndarray, e: float) -> np.ndarray:
-        return np.sign(w) * np.abs(w) ** e
-
-    uu, vv = np.meshgrid(u, v, indexing='ij')
-    e = 0.2
-    pts = np.stack(
-        [
-            size[0] / 2 * f(np.cos(vv), e) * f(np.cos(uu), e) + center[0],
-            size[1] / 2 * f(np.cos(vv), e) * f(np.sin(uu), e) + center[1],
-            size[2] / 2 * f(np.sin(vv), e) + center[2],
-        ],
-        axis=-1,
-    )
-    a, b = pts[:-1, :-1], pts[1:, :-1]
-    c, d = pts[1:, 1:], pts[:-1, 1:]
-    tris = np.concatenate([np.stack([a, b, c], -2), np.stack([a, c, d], -2)])
-    tris = tris.reshape(-1, 3, 3)
-    # drop the degenerate triangles at the poles (two equal corners)
-    area = np.linalg.norm(np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]), axis=1)
-    return tris[area > 1e-14]
-
-
 def bracket(size: Vec, triangles: int) -> np.ndarray:
-    """Three rounded blocks in a U (concave, as a servo bracket), ~``triangles`` in all."""
-    sx, sy, sz = size
-    n = max(8, int(math.sqrt(triangles / 3)))
-    wall = 0.25 * sx
-    return np.concatenate(
-        [
-            rounded_block((0.0, 0.0, 0.15 * sz), (sx, sy, 0.3 * sz), n),
-            rounded_block((-(sx - wall) / 2, 0.0, 0.6 * sz), (wall, sy, 0.7 * sz), n),
-            rounded_block(((sx - wall) / 2, 0.0, 0.6 * sz), (wall, sy, 0.7 * sz), n),
-        ]
-    )
+    """bench.dense_meshes' bumpy U-bracket (concave, dense, as a CAD export of a servo
+    bracket), stretched to ``size`` and centred on the link's z axis, its base at z = 0."""
+    tris = dense_meshes.u_bracket(triangles)
+    scale = np.array(size) / np.array([dense_meshes.W, dense_meshes.D, dense_meshes.H])
+    return tris * scale - np.array([size[0] / 2, size[1] / 2, 0.0])
 
 
 def inertial(size: Vec, mass: float) -> str:
