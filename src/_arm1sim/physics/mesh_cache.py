@@ -101,7 +101,8 @@ def collision_mesh(
         _atomic_write(info_path, json.dumps(info))
         return CollisionMesh(None, 0.0, False, notes, empty=True)
     if len(triangles) > HULL_POINTS_ABOVE:  # its hull made here, not on the physics thread
-        _atomic_write(points_path, points_obj_text(hull_points(triangles)))
+        if not os.path.isfile(points_path):  # the spawn that deferred the pieces made it
+            _atomic_write(points_path, points_obj_text(hull_points(triangles)))
         info['points'] = True
         hull: Optional[str] = points_path
     elif notes:  # pybullet is handed the repaired triangles, never the file
