@@ -85,18 +85,18 @@ class ArmMover(WorldTestCase):
         )
 
     def test_03_unreachable_target_answers_with_the_timeout_error(self):
-        # arm_mover_tight lets joint2 go to 3.0, past the URDF limit the controller clamps to
+        # arm_mover_tight lets joint1 go to 3.0, past the URDF limit the controller clamps to
         # arm_mover's ~timeout is sim time: judged in sim time, a slow machine stretches neither
         start = rospy.Time.now()
         with self.assertRaises(rospy.ServiceException) as err:
-            self.tight(0.0, 3.0, 0.0, 0.0)
+            self.tight(3.0, 1.0, 0.0, 0.0)
         waited = (rospy.Time.now() - start).to_sec()
         self.assertGreaterEqual(waited, 2.0, 'gave up before its 2 s timeout')
         self.assertLess(waited, 20, 'took too long to give up: %.1f sim s' % waited)
         text = str(err.exception)
         self.assertIn('not there after 2 s', text)
-        self.assertRegex(text, r'joint2 at 1\.5\d\d \(target 3\.000\)')
-        for j in ('joint1', 'joint3', 'joint4'):
+        self.assertRegex(text, r'joint1 at 1\.5\d\d \(target 3\.000\)')
+        for j in ('joint2', 'joint3', 'joint4'):
             self.assertNotIn(j, text)  # they did arrive
 
     def test_04_paused_physics_does_not_hang_it(self):
