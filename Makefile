@@ -78,7 +78,7 @@ BUILD_INPUTS := $(addprefix $(ROOT)/,package.xml CMakeLists.txt setup.py) \
   $(wildcard $(ROOT)/tools/compat_*.py) \
   $(wildcard $(ROOT)/tools/compat_msgs/*/*/*) $(wildcard $(ROOT)/tools/compat_cfg/*/*)
 
-.PHONY: setup venv build demo test test-stress lint bench soak clean link-package
+.PHONY: setup venv build demo web-picture test test-stress lint bench soak clean link-package
 
 # A stamp is only trusted while what it stands for is still there.
 ifeq ($(wildcard $(VENV_PY)),)
@@ -177,6 +177,10 @@ build: $(STAMPS)/venv link-package
 
 demo: setup
 	$(WS_SHELL) python3 -m _arm1sim.session.demo
+
+# Retake docs/images/web-view.png (session/web_picture.py): waits for the world at real time.
+web-picture: setup
+	$(WS_SHELL) python -m _arm1sim.session.web_picture
 
 test: setup
 	$(WS_SHELL) python test/run_all.py
