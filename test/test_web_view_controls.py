@@ -27,6 +27,8 @@ from gazebo_msgs.srv import (
 )
 from geometry_msgs.msg import Point, Pose, Quaternion
 
+from _arm1sim.session.web_picture import SOFTWARE_WEBGL, dismiss_notice, notice_js
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from camera_util import LOOK, JointCommander  # noqa: E402
 from rostest_util import Recorder, WorldTestCase, positions, wait_for  # noqa: E402
@@ -238,6 +240,14 @@ class WebViewControls(WorldTestCase):
         self.assertTrue(wait_for(there, 60), 'joint1 did not follow its slider to %.2f' % target)
         text = self.browser.wait_js(page_has_js('command %.3f' % target), PAGE)
         self.assertTrue(text, 'the page does not show the new command')
+
+    # -- viser's notice over the scene (issue 32; session/web_picture.py closes it) ----------
+    def test_09_the_software_webgl_notice_closes_with_a_click(self):
+        # Chromium draws WebGL with SwiftShader here: viser names it over the scene
+        self.assertIsNotNone(self.browser.js(notice_js(SOFTWARE_WEBGL)), 'no notice shown')
+        self.assertTrue(dismiss_notice(self.browser, SOFTWARE_WEBGL), 'the notice stays')
+        time.sleep(2.0)
+        self.assertFalse(self.browser.js(page_has_js(SOFTWARE_WEBGL)), 'the notice came back')
 
 
 if __name__ == '__main__':

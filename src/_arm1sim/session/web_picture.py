@@ -32,14 +32,14 @@ RTF_JS = (
 
 def notice_js(title: str) -> str:
     """JavaScript: the client rectangle of the close button of the Mantine notification
-    titled ``title`` (viser's notices), [] if the notice is there without one, null if the
-    notice is not on the page."""
+    titled ``title`` (viser's notices); null once ``title`` is nowhere in the page's text,
+    [] while it is but no close button is found (a viser whose notices look otherwise)."""
     return (
-        "(() => { const n = [...document.querySelectorAll('[class*=\"Notification-root\"]')]"
-        '.find(e => e.innerText.includes(%r)); if (!n) return null;'
-        " const b = n.querySelector('button'); if (!b) return [];"
-        ' const r = b.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; })()'
-        % title
+        '(() => { if (!document.body.innerText.includes(%r)) return null;'
+        " const n = [...document.querySelectorAll('[class*=\"Notification-root\"]')]"
+        ".find(e => e.innerText.includes(%r)); const b = n && n.querySelector('button');"
+        ' if (!b) return []; const r = b.getBoundingClientRect();'
+        ' return [r.left, r.top, r.width, r.height]; })()' % (title, title)
     )
 
 
@@ -57,8 +57,7 @@ def steady_since(readings: Sequence[Tuple[float, Optional[float]]], tolerance: f
 def dismiss_notice(browser: Browser, title: str, timeout: float = 60.0) -> bool:
     """Close the notice ``title`` with a click on its close button, if it is (or appears
     within a few seconds) on the page; True once it is gone, False if it stays."""
-    rect = browser.wait_js(notice_js(title), 10.0)
-    if rect is None:
+    if not browser.wait_js('%s !== null' % notice_js(title), 10.0):
         return True  # never shown (a GPU renderer) or already gone
     end = time.monotonic() + timeout
     while time.monotonic() < end:
