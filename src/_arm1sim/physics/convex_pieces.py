@@ -15,9 +15,13 @@ fewer pieces make a cheaper step (arm1's links: 396-592 triangles, 64-87 pieces)
 
 pybullet inflates each hull by its collision margin (1 mm). Each patch is moved inward by
 half of it, so contacts and rays both see the surface within 0.5 mm (contacts 0.5 mm out,
-rays 0.5 mm in), plus up to TOLERANCE on a curved patch. Each prism is thin (about 2 mm
-with its margin): a body pushed deeper than that into a face passes through it, where
-ODE's trimesh would push it back out.
+rays 0.5 mm in), plus up to TOLERANCE on a curved patch. At a convex edge a prism's side
+would stand in the next face's plane and its margin a full millimetre out of it, so each
+prism is also cut SHRINK behind the plane of every neighbouring face the patch lies behind:
+a piece plus its margin stays within SHRINK of the surface everywhere (Niryo One's hand and
+forearm, 1.75 mm apart, touched at such edges; Gazebo's trimeshes don't). Each prism is
+thin (about 2 mm with its margin): a body pushed deeper than that into a face passes
+through it, where ODE's trimesh would push it back out.
 
 A mesh is concave when some point of its hull stands more than CONCAVE_DEPTH out of a
 face's plane; a convex one (or one within that depth of convex) keeps pybullet's hull and
@@ -41,7 +45,8 @@ TOLERANCE = 0.0002  # m: how far a patch's vertex may stand in front of its own 
 PATCH_CONE = 0.5  # cos 60 degrees: the most a patch's triangle may turn from its seed's
 FLAT_COS = 0.9999  # normals this close (under ~0.8 degrees) may be one flat face
 PATCH_TRIANGLES = 256  # a patch grows no bigger (a flat face of more stays whole)
-WELD = 1e-7  # m: corners closer than this are one vertex
+WELD = 1e-7  # m: corners closer than this are one vertex (and a cut shallower is none)
+TOUCH = 1e-6  # m: a corner this close to a triangle lies on it
 CHUNK = 1 << 22  # face x hull-vertex products per numpy batch of the concavity check
 
 
@@ -248,11 +253,13 @@ class _Patch:
         return True
 
 
-def convex_patches(triangles: np.ndarray, normals: np.ndarray) -> List[List[int]]:
+def convex_patches(
+    triangles: np.ndarray, normals: np.ndarray, surface: Optional[_Surface] = None
+) -> List[List[int]]:
     """The triangles (wound outward, with their unit ``normals``) grouped into convex
     patches of edge-adjacent triangles, largest first: each list one patch's triangle
     indices. A flat CAD face of many triangles becomes one patch."""
-    surface = _Surface(triangles, normals)
+    surface = surface or _Surface(triangles, normals)
     area = np.linalg.norm(
         np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1
     )
@@ -279,22 +286,88 @@ def convex_patches(triangles: np.ndarray, normals: np.ndarray) -> List[List[int]
     return patches
 
 
+def _hull_2d(points: np.ndarray) -> np.ndarray:
+    """Indices of the 2-D points on their convex hull (Andrew's monotone chain)."""
+    order = np.lexsort((points[:, 1], points[:, 0]))
+    if len(order) < 3:
+        return order
+
+    def chain(indices: np.ndarray) -> List[int]:
+        kept: List[int] = []
+        for i in indices:
+            while len(kept) >= 2:
+                o, a = points[kept[-2]], points[kept[-1]]
+                b = points[i]
+                if (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]) > 0:
+                    break
+                kept.pop()
+            kept.append(int(i))
+        return kept[:-1]
+
+    return np.array(chain(order) + chain(order[::-1]), dtype=np.int64)
+
+
+def _cut(points: np.ndarray, normal: np.ndarray, offset: float) -> np.ndarray:
+    """The convex hull of ``points`` cut to ``normal . x <= offset``, as points whose hull it
+    is: those behind the plane and, on it, the hull of where every front-to-back segment
+    crosses it (the hull's edges among them). Nothing cut off less than WELD: unchanged."""
+    heights = points @ normal - offset
+    if heights.max() <= WELD:
+        return points
+    front, back = heights > 0, heights <= 0
+    if not back.any():
+        return points[:0]
+    hf, hb = heights[front][:, None], heights[back][None, :]
+    t = (hf / (hf - hb))[..., None]
+    crossings = points[front][:, None] + t * (points[back][None, :] - points[front][:, None])
+    crossings = crossings.reshape(-1, 3)
+    u = np.cross(normal, (1.0, 0.0, 0.0) if abs(normal[0]) < 0.9 else (0.0, 1.0, 0.0))
+    u /= np.linalg.norm(u)
+    flat = np.stack([crossings @ u, crossings @ np.cross(normal, u)], axis=1)
+    return np.concatenate([points[back], crossings[_hull_2d(flat)]])
+
+
+def _convex_neighbours(
+    surface: _Surface, members: Sequence[int], boxes: Tuple[np.ndarray, np.ndarray]
+) -> List[int]:
+    """Triangles that a corner of the patch lies on (so a T-junction counts), whose planes
+    the whole patch stands behind: a convex edge or corner between them. ``boxes``: each
+    triangle's bounding box (low, high corners)."""
+    points = surface.points[surface.vertices(members)]
+    low, high = boxes
+    near = np.flatnonzero(
+        (low <= points.max(axis=0) + TOUCH).all(axis=1)
+        & (high >= points.min(axis=0) - TOUCH).all(axis=1)
+    )
+    near = np.setdiff1d(near, members)
+    if not len(near):
+        return []
+    heights = points @ surface.normals[near].T - surface.offsets[near]
+    inside = (
+        (points[:, None, :] >= low[near][None] - TOUCH)
+        & (points[:, None, :] <= high[near][None] + TOUCH)
+    ).all(axis=2)
+    touching = ((np.abs(heights) <= TOUCH) & inside).any(axis=0)
+    return near[touching & (heights.max(axis=0) <= TOLERANCE)].tolist()
+
+
 def patch_hulls(triangles: np.ndarray) -> Tuple[str, int]:
     """One .obj object per convex patch: a prism from the patch moved inward by SHRINK to
-    THICKNESS deeper, along the patch's mean normal (metres: already scaled). Returns the
-    .obj text and the number of objects (pieces) in it."""
+    THICKNESS deeper, along the patch's mean normal (metres: already scaled), cut SHRINK
+    behind its own triangles' planes and its convex neighbours' (a piece plus pybullet's
+    margin then stands at most MARGIN - SHRINK out of the surface). A piece cut thinner
+    than WELD is left out. Returns the .obj text and the number of objects (pieces)."""
     if _outward(triangles) < 0:
         triangles = triangles[:, ::-1]  # wound outward from here on
     n, ok = _normals(triangles)
     triangles, n = triangles[ok], n[ok]
-    ids, points = _weld(triangles)
+    surface = _Surface(triangles, n)
+    ids, points = surface.ids, surface.points
+    boxes = (triangles.min(axis=1), triangles.max(axis=1))
     lines = []
-    base = 1
-    patches = convex_patches(triangles, n)
-    for i, members in enumerate(patches):
-        corners = ids[members]
-        used, local = np.unique(corners, return_inverse=True)
-        local = local.reshape(-1, 3)
+    base, count = 1, 0
+    for members in convex_patches(triangles, n, surface):
+        used = np.unique(ids[members])
         area = np.linalg.norm(
             np.cross(
                 triangles[members, 1] - triangles[members, 0],
@@ -305,17 +378,22 @@ def patch_hulls(triangles: np.ndarray) -> Tuple[str, int]:
         mean = (n[members] * area[:, None]).sum(axis=0)
         inward = -mean / np.linalg.norm(mean)
         top = points[used] + SHRINK * inward
-        bottom = top + THICKNESS * inward
-        m = len(used)
-        lines.append('o p%d\n' % i)
-        lines.extend('v %.9g %.9g %.9g\n' % tuple(v) for v in np.concatenate([top, bottom]))
-        # a closed prism: the patch, its copy below, and a wall under each boundary edge
-        # (pybullet takes the hull of the vertices its faces name)
-        faces = [tuple(f) for f in local] + [(c + m, b + m, a + m) for a, b, c in local]
-        directed = {e for f in local for e in _edges(f)}
-        for a, b in sorted(directed):
-            if (b, a) not in directed:
-                faces += [(b, a, a + m), (b, a + m, b + m)]
-        lines.extend('f %d %d %d\n' % (base + x, base + y, base + z) for x, y, z in faces)
-        base += 2 * m
-    return ''.join(lines), len(patches)
+        piece = np.concatenate([top, top + THICKNESS * inward])
+        for t in list(members) + _convex_neighbours(surface, members, boxes):
+            piece = _cut(piece, surface.normals[t], surface.offsets[t] - SHRINK)
+            if len(piece) < 4:
+                break
+        if len(piece) < 4:
+            continue  # cut away: a sliver whose neighbours' margins cover it
+        centred = piece - piece.mean(axis=0)
+        if np.ptp(centred @ np.linalg.svd(centred, full_matrices=False)[2][2]) < WELD:
+            continue  # cut flat, as above
+        lines.append('o p%d\n' % count)
+        lines.extend('v %.9g %.9g %.9g\n' % tuple(v) for v in piece)
+        # pybullet takes the hull of the vertices its faces name: one fan over them all
+        lines.extend(
+            'f %d %d %d\n' % (base, base + i, base + i + 1) for i in range(1, len(piece) - 1)
+        )
+        base += len(piece)
+        count += 1
+    return ''.join(lines), count
