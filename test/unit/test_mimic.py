@@ -332,3 +332,75 @@ def test_the_fourbar_closes_on_a_box_and_its_leader_holds_still(sim):
     assert lead == pytest.approx(0.353, abs=0.005)  # on the box, short of the goal's 0.4
     assert followers == pytest.approx([lead] * 5, abs=0.005)
     assert fastest < 3.0
+
+
+PID_PLUGIN = """<gazebo>
+  <plugin name="m" filename="libroboticsgroup_upatras_gazebo_mimic_joint_plugin.so">
+    <joint>lead</joint><mimicJoint>follow</mimicJoint><multiplier>0.5</multiplier>
+    <offset>0.2</offset>%s%s</plugin></gazebo>"""
+
+
+@pytest.mark.parametrize(
+    'tags, namespace',
+    [
+        ('<hasPID/>', '/gazebo_ros_control/pid_gains/follow'),
+        (
+            '<hasPID/><robotNamespace>/arm</robotNamespace>',
+            '/arm/gazebo_ros_control/pid_gains/follow',
+        ),
+        ('<hasPID>my_gains</hasPID><robotNamespace>arm</robotNamespace>', '/arm/my_gains'),
+        ('', None),
+    ],
+)
+def test_has_pid_reads_its_gains_where_the_plugin_does(tags, namespace):
+    mimic = parse_urdf(urdf(plugin=PID_PLUGIN % (tags, ''))).mimics[0]
+    assert mimic.pid_gains == namespace
+
+
+def pid_sim_model(sim, gains, max_effort='<maxEffort>0.05</maxEffort>'):
+    from _arm1sim.sim.plugins.mimic import attach_mimic_pids
+
+    model = sim.spawn_urdf('two', urdf(plugin=PID_PLUGIN % ('<hasPID/>', max_effort)))
+    asked = []
+
+    def params_at(namespace):
+        asked.append(namespace)
+        return gains
+
+    attach_mimic_pids(model.description, model.robot, params_at, sim.period)
+    assert asked == ['/gazebo_ros_control/pid_gains/follow']
+    model.robot.set_joint_positions({'lead': 1.0})
+    return model
+
+
+def test_has_pid_drives_the_follower_with_its_gains_clamped_at_max_effort(sim):
+    # target 0.7 rad; the PID (p 2, d 0.05) alone would get there in a few hundredths of
+    # a second, but clamped at 0.05 N m it turns b (izz 1e-4 + 0.1 kg at 0.1 m:
+    # 1.1e-3 kg m^2) at 45 rad/s^2 at most: 0.23 rad in the first 0.1 s
+    model = pid_sim_model(sim, {'p': 2.0, 'd': 0.05})
+    for _ in range(100):
+        sim.step()
+    assert 0.1 < positions(model, ['follow'])[0] < 0.23
+    for _ in range(2900):
+        sim.step()
+    lead, follow = positions(model, ['lead', 'follow'])
+    assert follow == pytest.approx(lead * 0.5 + 0.2, abs=0.01)
+
+
+def test_has_pid_without_a_p_gain_leaves_the_follower_free(sim, caplog):
+    model = pid_sim_model(sim, {})
+    for _ in range(500):
+        sim.step()
+    assert positions(model, ['follow'])[0] == pytest.approx(0.0, abs=1e-3)
+    assert 'No p gain specified for pid' in caplog.text
+
+
+def test_pid_effort_is_clamped_and_idle_within_sensitiveness():
+    from _arm1sim.physics.mimic import MimicJoint, pid_effort
+
+    m = MimicJoint(1, 0, 1.0, 0.0, 2.0, 0.1, pid=lambda error: 100.0 * error)
+    assert pid_effort(1.0, 0.0, m) == 2.0  # clamped at maxEffort
+    assert pid_effort(-1.0, 0.0, m) == -2.0
+    assert pid_effort(0.05, 0.0, m) == 0.0  # within sensitiveness: no effort
+    assert pid_effort(0.0, 0.005, m) == 0.0
+    assert pid_effort(0.3, float('nan'), m) == 0.0  # NaN position taken for the target

@@ -76,6 +76,10 @@ class Mimic:
     max_effort: Optional[float] = None  # None: the follower's effort limit
     sensitiveness: float = 0.0  # acts only when |target - position| >= it
     plugin: bool = False  # roboticsgroup's plugin (else a URDF <mimic>, which Gazebo 11 ignores)
+    # <hasPID>: the parameter namespace of the follower's PID gains (the plugin's
+    # <robotNamespace> joined with the tag's text, else gazebo_ros_control/pid_gains/<follower>);
+    # None: no <hasPID>, the follower is set to its target
+    pid_gains: Optional[str] = None
 
 
 @dataclass
@@ -420,8 +424,8 @@ def _stripped(text: Optional[str]) -> Optional[str]:
 
 
 def _mimic_plugin(p: ET.Element) -> Mimic:
-    """roboticsgroup's plugin: <joint> leads, <mimicJoint> follows (hasPID is not modelled:
-    the follower is always a motor capped at maxEffort)."""
+    """roboticsgroup's plugin: <joint> leads, <mimicJoint> follows; with <hasPID> a PID
+    drives it, its gains read where the plugin reads them (Mimic.pid_gains)."""
     what = "mimic joint plugin '%s'" % (p.get('name') or '')
 
     def number(tag: str, default: Optional[float]) -> Optional[float]:
@@ -431,6 +435,13 @@ def _mimic_plugin(p: ET.Element) -> Mimic:
     follower = (p.findtext('mimicJoint') or '').strip()
     if not follower:
         raise UrdfError('%s has no <mimicJoint>' % what)
+    has_pid = p.find('hasPID')
+    gains = None
+    if has_pid is not None:
+        # as the plugin: ros::NodeHandle(NodeHandle(<robotNamespace>), <hasPID> or default)
+        name = (has_pid.text or '').strip() or 'gazebo_ros_control/pid_gains/' + follower
+        namespace = (p.findtext('robotNamespace') or '').strip().strip('/')
+        gains = name if name.startswith('/') else '/'.join(['', namespace, name]).replace('//', '/')
     return Mimic(
         follower,
         (p.findtext('joint') or '').strip(),
@@ -439,6 +450,7 @@ def _mimic_plugin(p: ET.Element) -> Mimic:
         number('maxEffort', None),
         abs(number('sensitiveness', 0.0) or 0.0),
         plugin=True,
+        pid_gains=gains,
     )
 
 

@@ -9,12 +9,16 @@ hangs below the leader (the leader's child link or deeper), the reaction is hand
 the leader's parent link instead, so the robot as a whole still feels it (no net force
 appears from nowhere) while the leader's joint does not. Without that, the reaction feeds
 the leader's controller, which can run away.
+
+With ``<hasPID>`` the plugin instead applies a PID's effort (clamped at maxEffort) to the
+follower, a joint force like any other: its reaction reaches the parent link, and through
+it the leader, in Gazebo as here (``set_pid``: no reroute).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import List, Optional, Sequence, Tuple
+from typing import Callable, List, Optional, Sequence, Tuple
 
 import pybullet as p
 
@@ -39,6 +43,8 @@ class MimicJoint:
     # pass through the leader's joint.
     reroute: Optional[Tuple[int, int, bool, Tuple[float, float, float]]] = None
     last_effort: float = 0.0  # the motor's force or torque in the last step
+    # hasPID: effort for (target - position), called once per step; None: a position motor
+    pid: Optional[Callable[[float], float]] = None
 
 
 def mimic_joints(
@@ -72,12 +78,40 @@ def _below(body: int, client: int, link: int, joint: int) -> bool:
     return False
 
 
+def set_pid(body: int, client: int, m: MimicJoint, law: Callable[[float], float]) -> None:
+    """Drives the follower by ``law(error)``, an effort, from now on (hasPID)."""
+    m.pid, m.reroute, m.last_effort = law, None, 0.0
+    # pybullet's default velocity motor would hold the joint against the effort
+    p.setJointMotorControl2(body, m.follower, p.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+
+
+def pid_effort(target: float, position: float, m: MimicJoint) -> float:
+    """The plugin's hasPID update: no effort within ``sensitiveness`` of the target (and
+    the PID not stepped), else the PID's command clamped at +-maxEffort."""
+    assert m.pid is not None
+    if position != position:  # NaN, as the plugin: taken for the target
+        position = target
+    if not abs(target - position) >= m.sensitiveness:
+        return 0.0
+    return min(max(m.pid(target - position), -m.max_force), m.max_force)
+
+
 def follow(body: int, client: int, mimics: Sequence[MimicJoint]) -> None:
     """Before a step: each follower's motor toward its target, set last so that it overrides
     anything written to the follower, and last step's reaction kept off its leader."""
     for m in mimics:
         lead = p.getJointState(body, m.leader, physicsClientId=client)[0]
         target = lead * m.multiplier + m.offset
+        if m.pid is not None:
+            pos = p.getJointState(body, m.follower, physicsClientId=client)[0]
+            p.setJointMotorControl2(
+                body,
+                m.follower,
+                p.TORQUE_CONTROL,
+                force=pid_effort(target, pos, m),
+                physicsClientId=client,
+            )
+            continue
         if m.sensitiveness > 0:
             pos = p.getJointState(body, m.follower, physicsClientId=client)[0]
             if abs(target - pos) < m.sensitiveness:

@@ -174,6 +174,13 @@ class Robot:
             ],
         )
 
+    def set_mimic_pid(self, follower, law):
+        """The follower (by joint name) driven by ``law(error) -> effort`` (hasPID)."""
+        index = self.joint_index[follower]
+        for m in self.mimics:
+            if m.follower == index:
+                mimic.set_pid(self.body, self.client, m, law)
+
     def follow_mimics(self):
         """Before a step: physics.mimic.follow (overrides any command given to a follower)."""
         mimic.follow(self.body, self.client, self.mimics)

@@ -20,6 +20,7 @@ from ...description.resource_paths import ResourcePaths, gazebo_paths
 from ...description.sdf_model import SdfModelError, model_dir_finder
 from ...description.sdf_to_urdf import ModelSpawn, sdf_spawn
 from ...sim.model_state import WORLD_NAMES, State, compose, frame_state
+from ...sim.plugins.mimic import attach_mimic_pids
 from ...sim.simulation import Model, PreparedUrdf, Simulation, SpawnError
 from ..common.packages import find_package, gazebo_exports
 from ..control.controller_manager_services import ControllerManagerServices
@@ -156,9 +157,12 @@ class GazeboRosApi:
     def _spawn_prepared(self, prepared: PreparedUrdf, namespace: str) -> Model:
         return self.sim.spawn_prepared(prepared, namespace, attach=self._attach_plugins)
 
-    @staticmethod
-    def _attach_plugins(model: Model) -> None:
+    def _attach_plugins(self, model: Model) -> None:
         """The ROS side of a model's plugins; each goes into the model's record."""
+        # roboticsgroup's <hasPID> reads its gains at Load, as gazebo_ros_control does
+        attach_mimic_pids(
+            model.description, model.robot, lambda ns: RosNodeHandle(ns).params, self.sim.period
+        )
         if model.hw is not None:
             if not rosgraph.names.is_legal_name(model.namespace):
                 raise SpawnError(
