@@ -403,4 +403,4 @@ def test_pid_effort_is_clamped_and_idle_within_sensitiveness():
     assert pid_effort(-1.0, 0.0, m) == -2.0
     assert pid_effort(0.05, 0.0, m) == 0.0  # within sensitiveness: no effort
     assert pid_effort(0.0, 0.005, m) == 0.0
-    assert pid_effort(0.3, float('nan'), m) == 0.0  # NaN position taken for the target
+    assert pid_effort(0.3, float('nan'), m) == 0.0  # a NaN position: nothing applied

@@ -86,12 +86,10 @@ def set_pid(body: int, client: int, m: MimicJoint, law: Callable[[float], float]
 
 
 def pid_effort(target: float, position: float, m: MimicJoint) -> float:
-    """The plugin's hasPID update: no effort within ``sensitiveness`` of the target (and
-    the PID not stepped), else the PID's command clamped at +-maxEffort."""
+    """The plugin's hasPID update: no effort within ``sensitiveness`` of the target or at a
+    NaN position (and the PID not stepped), else the PID's command clamped at +-maxEffort."""
     assert m.pid is not None
-    if position != position:  # NaN, as the plugin: taken for the target
-        position = target
-    if not abs(target - position) >= m.sensitiveness:
+    if not abs(target - position) >= m.sensitiveness:  # NaN too, as the plugin's test
         return 0.0
     return min(max(m.pid(target - position), -m.max_force), m.max_force)
 
