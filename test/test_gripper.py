@@ -1,7 +1,9 @@
 #!/usr/bin/env python
 """A gripper with a mimic finger (test/config/gripper_bot.urdf) and a box between its fingers,
 under a real master: a control_msgs/GripperCommand goal closes on the box and is aborted as
-stalled; the mimic finger mirrors the leader in joint_states; opening reaches its goal."""
+stalled; the mimic finger mirrors the leader in joint_states; opening reaches its goal. Beside
+it, a mimic plugin's <hasPID> follower (test/config/pid_mimic.urdf) reaches its target under
+the gains the launch sets."""
 
 import os
 import sys
@@ -11,7 +13,7 @@ import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import GripperCommandAction, GripperCommandGoal
-from gazebo_msgs.srv import SpawnModel
+from gazebo_msgs.srv import GetJointProperties, SpawnModel
 from geometry_msgs.msg import Pose
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -93,6 +95,21 @@ class Gripper(WorldTestCase):
             wait_for(lambda: abs(by_name(self.states.last())[FOLLOW] + 0.01) < 0.003, 10),
             'mimic finger at %.4f, not -0.01' % by_name(self.states.last())[FOLLOW],
         )
+
+    def test_5_a_has_pid_follower_reaches_its_target_under_its_gains(self):
+        # pid_follow: offset 0.3 from the free pid_lead (at 0); p 2, d 0.05 from the launch's
+        # /pid_mimic/gazebo_ros_control/pid_gains/pid_follow (without them: zero gains, at 0)
+        rospy.wait_for_service('/gazebo/get_joint_properties', 60)
+        joint = rospy.ServiceProxy('/gazebo/get_joint_properties', GetJointProperties)
+
+        def position(name):
+            answer = joint(name)
+            return answer.position[0] if answer.success else None
+
+        self.assertTrue(wait_for(lambda: position('pid_follow') is not None, 60))
+        rospy.sleep(2.0)  # sim time: the PID settles in well under a second
+        self.assertAlmostEqual(position('pid_lead'), 0.0, delta=0.01)
+        self.assertAlmostEqual(position('pid_follow'), 0.3, delta=0.01)
 
 
 if __name__ == '__main__':
