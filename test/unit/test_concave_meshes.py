@@ -305,6 +305,15 @@ def test_a_face_narrower_than_two_shrinks_loses_its_piece_and_the_rest_stay():
     assert count == 2 and len(tops) == 2
 
 
+def test_the_fast_2d_hull_finds_the_monotone_chains_hull():
+    # the cut's polygon: the numpy prefilter drops only points that are not hull vertices
+    rng = np.random.default_rng(1)
+    for _ in range(50):
+        points = rng.normal(size=(int(rng.integers(3, 3000)), 2)) * rng.uniform(1e-4, 1, 2)
+        fast = {tuple(points[i]) for i in convex_pieces._hull_2d(points)}
+        assert fast == {tuple(points[i]) for i in convex_pieces._monotone_chain(points)}
+
+
 def test_a_part_welded_to_the_world_skips_the_ground_and_still_holds_a_box(tmp_path, monkeypatch):
     # the U welded to the world, standing on the ground: its pieces are not tested against
     # the ground (static against static, as pybullet's fixed base), a box still rests in it

@@ -286,7 +286,38 @@ def convex_patches(
     return patches
 
 
+_DIRECTIONS = np.array([(np.cos(a), np.sin(a)) for a in np.arange(32) * np.pi / 16])
+
+
 def _hull_2d(points: np.ndarray) -> np.ndarray:
+    """Indices of the 2-D points on their convex hull (Andrew's monotone chain, after
+    dropping, in numpy, the points inside the polygon of the extreme points in 32
+    directions: a cut's crossings are thousands, its hull a few dozen)."""
+    _, unique = np.unique(points, axis=0, return_index=True)
+    return unique[_hull_2d_unique(points[unique])]
+
+
+def _hull_2d_unique(points: np.ndarray) -> np.ndarray:
+    corners = np.argmax(points @ _DIRECTIONS.T, axis=0)  # counter-clockwise
+    corners = corners[np.r_[True, corners[1:] != corners[:-1]]]
+    if len(corners) > 2 and corners[0] == corners[-1]:
+        corners = corners[:-1]
+    if len(corners) >= 3:
+        a = points[corners]
+        edge = np.roll(a, -1, axis=0) - a
+        rel = points[:, None, :] - a[None]
+        # on an edge counts as inside (not a vertex: a cut's crossings line up by thousands)
+        tolerance = -1e-12 * float(np.ptp(points, axis=0).max()) ** 2
+        cross = edge[None, :, 0] * rel[..., 1] - edge[None, :, 1] * rel[..., 0]
+        inside = (cross >= tolerance).all(axis=1)
+        inside[corners] = False
+        kept = np.flatnonzero(~inside)
+    else:
+        kept = np.arange(len(points))
+    return kept[_monotone_chain(points[kept])]
+
+
+def _monotone_chain(points: np.ndarray) -> np.ndarray:
     """Indices of the 2-D points on their convex hull (Andrew's monotone chain)."""
     order = np.lexsort((points[:, 1], points[:, 0]))
     if len(order) < 3:
