@@ -17,7 +17,8 @@ pybullet inflates each hull by its collision margin (1 mm). Each patch is moved 
 half of it, so contacts and rays both see the surface within 0.5 mm (contacts 0.5 mm out,
 rays 0.5 mm in), plus up to TOLERANCE on a curved patch. At a convex edge a prism's side
 would stand in the next face's plane and its margin a full millimetre out of it, so each
-prism is also cut SHRINK behind the plane of every neighbouring face the patch lies behind:
+prism is also cut SHRINK behind the plane of every neighbouring face the patch lies behind
+(turning by more than 25 degrees):
 a piece plus its margin stays within SHRINK of the surface everywhere (Niryo One's hand and
 forearm, 1.75 mm apart, touched at such edges; Gazebo's trimeshes don't). Each prism is
 thin (about 2 mm with its margin): a body pushed deeper than that into a face passes
@@ -47,6 +48,10 @@ FLAT_COS = 0.9999  # normals this close (under ~0.8 degrees) may be one flat fac
 PATCH_TRIANGLES = 256  # a patch grows no bigger (a flat face of more stays whole)
 WELD = 1e-7  # m: corners closer than this are one vertex (and a cut shallower is none)
 TOUCH = 1e-6  # m: a corner this close to a triangle lies on it
+# cos 25 degrees: a smoother turn is not cut (its uncut side stands at most
+# SHRINK * (1 - cos) = 0.05 mm further out than the faces), so a curved surface's many
+# gentle edges cost nothing
+SMOOTH_TURN = 0.906
 CHUNK = 1 << 22  # face x hull-vertex products per numpy batch of the concavity check
 
 
@@ -359,11 +364,15 @@ def _cut(points: np.ndarray, normal: np.ndarray, offset: float) -> np.ndarray:
 
 
 def _convex_neighbours(
-    surface: _Surface, members: Sequence[int], boxes: Tuple[np.ndarray, np.ndarray]
+    surface: _Surface,
+    members: Sequence[int],
+    boxes: Tuple[np.ndarray, np.ndarray],
+    normal: np.ndarray,
 ) -> List[int]:
     """Triangles that a corner of the patch lies on (so a T-junction counts), whose planes
-    the whole patch stands behind: a convex edge or corner between them. ``boxes``: each
-    triangle's bounding box (low, high corners)."""
+    the whole patch stands behind: a convex edge or corner between them, turning by more
+    than SMOOTH_TURN from the patch's mean ``normal``. ``boxes``: each triangle's bounding
+    box (low, high corners)."""
     points = surface.points[surface.vertices(members)]
     low, high = boxes
     near = np.flatnonzero(
@@ -371,6 +380,7 @@ def _convex_neighbours(
         & (high >= points.min(axis=0) - TOUCH).all(axis=1)
     )
     near = np.setdiff1d(near, members)
+    near = near[surface.normals[near] @ normal < SMOOTH_TURN]
     if not len(near):
         return []
     heights = points @ surface.normals[near].T - surface.offsets[near]
@@ -385,9 +395,10 @@ def _convex_neighbours(
 def patch_hulls(triangles: np.ndarray) -> Tuple[str, int]:
     """One .obj object per convex patch: a prism from the patch moved inward by SHRINK to
     THICKNESS deeper, along the patch's mean normal (metres: already scaled), cut SHRINK
-    behind its own triangles' planes and its convex neighbours' (a piece plus pybullet's
-    margin then stands at most MARGIN - SHRINK out of the surface). A piece cut thinner
-    than WELD is left out. Returns the .obj text and the number of objects (pieces)."""
+    behind its convex neighbours' planes (a piece plus pybullet's margin then stands at
+    most MARGIN - SHRINK out of the surface, plus TOLERANCE on a curved patch and 0.05 mm
+    at a turn under SMOOTH_TURN). A piece cut thinner than WELD is left out. Returns the
+    .obj text and the number of objects (pieces)."""
     if _outward(triangles) < 0:
         triangles = triangles[:, ::-1]  # wound outward from here on
     n, ok = _normals(triangles)
@@ -410,7 +421,7 @@ def patch_hulls(triangles: np.ndarray) -> Tuple[str, int]:
         inward = -mean / np.linalg.norm(mean)
         top = points[used] + SHRINK * inward
         piece = np.concatenate([top, top + THICKNESS * inward])
-        for t in list(members) + _convex_neighbours(surface, members, boxes):
+        for t in _convex_neighbours(surface, members, boxes, -inward):
             piece = _cut(piece, surface.normals[t], surface.offsets[t] - SHRINK)
             if len(piece) < 4:
                 break

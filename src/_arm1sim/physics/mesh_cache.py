@@ -21,7 +21,7 @@ from .convex_pieces import CONCAVE_DEPTH, concavity, patch_hulls
 from .mesh_hulls import hull_points, points_obj_text
 from .mesh_reading import checked_triangles
 
-VERSION = 6  # of the cached files' format; a change makes new ones (6: pieces cut at convex edges)
+VERSION = 7  # of the cached files' format; a change makes new ones (7: pieces cut at convex edges)
 # A mesh of more triangles that collides as its hull is handed to pybullet as its hull's
 # points (physics/mesh_hulls.py): pybullet's own hull of it would hold up the physics
 # thread (45 ms for 20 k triangles, seconds for millions).
