@@ -53,6 +53,8 @@ def test_figures_are_sane(quick_bench):
     assert 0.9 < median(r, 'realtime', 'rtf') < 1.1
     assert abs(median(r, 'realtime', 'joint_states_hz') - 50.0) < 1.0
     assert 0 < median(r, 'realtime', 'cpu_core_fraction') < 0.8
+    # arm1 commanded upright, off the ground: measured, and no dearer than a core
+    assert 0 < median(r, 'realtime', 'cpu_core_fraction_upright') < 1.0
     assert 20 < median(r, 'realtime', 'peak_rss_mb') < 1000
     assert 0.2 < median(r, 'startup', 'startup_s') < 20
     assert r['raw']['latency'][0]['n'] >= 95  # nearly every command seen applied

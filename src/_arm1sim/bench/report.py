@@ -39,6 +39,22 @@ ROWS = [
         '%.3f',
     ),
     (
+        '  the same launch, arm1 commanded upright, off the ground (fraction of a core)',
+        'realtime',
+        'cpu_core_fraction_upright',
+        '',
+        None,
+        '%.3f',
+    ),
+    (
+        '  the same launch, arm1 upright (core-seconds per simulated second)',
+        'realtime',
+        'cpu_per_sim_s_upright',
+        '',
+        None,
+        '%.3f',
+    ),
+    (
         '  the floor: empty world, no robot (fraction of a core)',
         'idle_world',
         'cpu_core_fraction',
@@ -472,26 +488,28 @@ def unmet_section(results: Results) -> str:
             % (ratio, 1e6 / bare, 1e6 / standin, 1e6 / bare / 0.6)
         )
     cpu, floor = med('realtime', 'cpu_core_fraction'), med('idle_world', 'cpu_core_fraction')
+    upright = med('realtime', 'cpu_core_fraction_upright')
     wake = med('idle_world', 'sleep_wakeup_cpu_us')
     if cpu is not None and cpu > 0.10 and floor is not None:
         out.append(
-            '- **CPU at real time %.3f of a core (goal 0.10).** An empty world already costs '
-            '%.3f: a 1 kHz world sleeps and wakes 500 times a second at two steps a wake-up '
-            '(one wake-up: %.0f µs of CPU on this virtual machine). arm1 adds %.0f µs of CPU '
-            'per step, several times '
-            'what a step costs back to back at top speed (%.0f µs): a step after a sleep runs '
-            'on cold caches. Done: two steps per wake-up (world_loop.STEPS_PER_WAKE; commands '
-            'and hand-over calls wake the loop early, so they wait no longer): measured side '
-            'by side, 0.083-0.089 core against 0.104-0.106 with one, and a lower command '
-            'latency. What is left is per wake-up and per step: four steps per wake-up saved '
-            'no more clearly, and every /clock (100 Hz) goes to each of its subscribers, one '
-            'loopback write each.'
+            '- **CPU at real time %.3f of a core (goal 0.10).** As launched, arm1 lies where '
+            'it fell in the half second before the spawner started its controllers (as in '
+            'Gazebo: efforts are zero until then), link4 resting on the ground, and pybullet '
+            'solves that resting contact every step: arm1 lying so, pybullet\'s step alone '
+            'costs 73-85 µs back to back with link4\'s convex pieces, 40 µs with its one hull '
+            'and 8-9 µs with nothing touching (measured apart, ROS-free, 2026-11-27). The same '
+            'launch with arm1 commanded upright: %s. An empty world costs %.3f: a '
+            '1 kHz world sleeps and wakes 500 times a second at two steps a wake-up (one '
+            'wake-up: %.0f µs of CPU on this virtual machine). Tried: more steps per wake-up '
+            '(world_loop.STEPS_PER_WAKE 10 and 20 against 2, launched world, interleaved: '
+            'medians 0.191 and 0.180 against 0.203 core-seconds per simulated second). '
+            'Left: a cheaper resting contact of a compound on the ground without changing what '
+            'touches what (putting the resting arm to sleep changed nothing: it never slept).'
             % (
                 cpu,
+                'not measured in this run' if upright is None else '%.3f of a core' % upright,
                 floor,
                 float('nan') if wake is None else wake,
-                (cpu - floor) * 1000,
-                1e6 / standin if standin else float('nan'),
             )
         )
     p99, p50 = med('latency', 'p99_ms'), med('latency', 'p50_ms')
@@ -577,7 +595,9 @@ METHOD = '''
 - **real time**: `roslaunch arm1 gazebo.launch gui:=false`, watched from another process:
   real-time factor = sim time advanced (from `/clock`) over wall time, joint_states rate =
   messages over their sim-time span; CPU = user+system time of the world process (`/gazebo`)
-  over wall time; peak memory = its VmHWM.
+  over wall time; peak memory = its VmHWM. Then arm1 commanded upright (its four position
+  controllers to 0; as launched it lies where it fell before its controllers started) and,
+  3 s later, the world's CPU again over up to 20 s ("upright").
 - **start-up**: from starting `roslaunch arm1 gazebo.launch gui:=false` (master included,
   nothing running before) to the first `/arm1/joint_states` message.
 - **command latency**: a separate process publishes 1 000 distinct joint1 targets at 100 Hz;
