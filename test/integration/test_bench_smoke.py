@@ -46,6 +46,7 @@ def test_figures_are_sane(quick_bench):
     _, r, _ = quick_bench
     assert median(r, 'bare', 'steps_per_s') > 5000
     assert r['figures']['speed_ratio']['median'] > 0.2  # the stand-in is not far off bare pybullet
+    assert 0.2 < r['figures']['speed_ratio_cpu']['median'] < 1.5  # in CPU time per step too
     # the trajectory-controlled arm runs, at a speed of the same order as the position one
     assert median(r, 'standin_trajectory', 'steps_per_s') > 0.3 * median(
         r, 'standin_1', 'steps_per_s'

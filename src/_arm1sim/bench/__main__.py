@@ -154,6 +154,9 @@ def figures(raw: Raw) -> Dict[str, Dict[str, Any]]:
     fig: Dict[str, Dict[str, Any]] = {key: summarise(samples) for key, samples in raw.items()}
     one = fig['standin_1']['steps_per_s']['median']
     fig['speed_ratio'] = {'median': one / fig['bare']['steps_per_s']['median']}
+    cpu = [fig[k].get('cpu_us_per_step', {}).get('median') for k in ('bare', 'standin_1')]
+    if all(cpu):  # the same ratio in CPU time per step: what a loaded machine leaves alone
+        fig['speed_ratio_cpu'] = {'median': cpu[0] / cpu[1]}
     for n in SCALING_ARMS:  # N arms' steps in a second (each arm steps) over one arm's
         if 'standin_%d' % n in fig:
             many = fig['standin_%d' % n]['steps_per_s']['median']

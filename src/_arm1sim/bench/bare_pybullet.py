@@ -38,7 +38,7 @@ def bare(seconds: float) -> Dict[str, float]:
     p.setJointMotorControlArray(body, idx, p.VELOCITY_CONTROL, forces=[0] * 4, physicsClientId=cid)
     target, kp, kd = [0.5, 1.2, 0.0, 0.0], 1.0, 0.002
     last_err = [0.0] * 4
-    steps, start = 0, time.perf_counter()
+    steps, start, cpu = 0, time.perf_counter(), time.process_time()
     deadline = start + seconds
     while True:
         for _ in range(1000):
@@ -56,4 +56,7 @@ def bare(seconds: float) -> Dict[str, float]:
         steps += 1000
         now = time.perf_counter()
         if now >= deadline:
-            return {'steps_per_s': steps / (now - start)}
+            return {
+                'steps_per_s': steps / (now - start),
+                'cpu_us_per_step': (time.process_time() - cpu) / steps * 1e6,
+            }

@@ -82,6 +82,14 @@ ROWS = [
     ('stand-in top speed, 1 arm (steps/s)', 'standin_1', 'steps_per_s', '', None, '%.0f'),
     ('stand-in / bare speed ratio', 'speed_ratio', None, '≥ 0.6', lambda v: v >= 0.6, '%.2f'),
     (
+        '  the same ratio in CPU time per step (bare over stand-in)',
+        'speed_ratio_cpu',
+        None,
+        '',
+        None,
+        '%.2f',
+    ),
+    (
         'stand-in top speed, 1 arm, one JointTrajectoryController (steps/s)',
         'standin_trajectory',
         'steps_per_s',
@@ -587,6 +595,8 @@ METHOD = '''
 - **bare pybullet loop**: arm1 (same URDF and meshes) in pybullet DIRECT, a ground plane; each
   step reads the four joints, computes a PD in plain Python, applies the torques and steps.
   No ROS, none of our classes: the ceiling for anything built on pybullet in Python.
+  Also its CPU time (process) per step, and the stand-in's: their ratio is what a loaded
+  machine leaves alone (steps per wall second count the waits for a core).
 - **stand-in top speed**: the world node's own code (`start_world`, `WorldNode.run`) with
   `real_time_update_rate` 0, all five controllers running, `/clock` at 100 Hz sim time and
   joint_states at 50 Hz sim time with a subscriber in another process (`rostopic hz`, as
