@@ -58,9 +58,8 @@ class ArmMover(WorldTestCase):
     def test_02_out_of_range_requests_are_clamped_with_a_warning(self):
         start = time.monotonic()
         # joint1's range is set to [-1.57, 1.0] in the launch file; joint4's is the URDF's.
-        # Not joint3 to its lower end (-1.0): that fold sometimes flips the arm up against
-        # joint2's upper stop, where it stays (1 run in 4, the same before 2026-11-27; left
-        # open in the closing note), whatever arm_mover asked.
+        # Not joint3 to its lower end (-1.0): with the URDF's velocity cut that fold can flip
+        # the arm up against joint2's upper stop (docs/controllers.md; the launch file lifts it).
         before = rospy.Time.now()
         resp = self.safe_move(3.0, 0.6, 0.3, -2.0)
         after = rospy.Time.now()
