@@ -8,10 +8,8 @@ Needs the built workspace (tools/ws-run python -m pytest test/unit/test_compat_f
 
 from __future__ import annotations
 
-import os
-
 import pytest
-from helpers import ACTION_PARTS, DEFINITIONS, generated_class
+from helpers import generated_class, types_defined_here
 
 UPSTREAM = {
     'franka_gripper/GraspAction': '6f89449359949eaf1f0fef57b7e0db2a',
@@ -70,17 +68,7 @@ def test_generated_type_has_upstream_md5sum(type_name: str) -> None:
 
 
 def test_every_franka_definition_file_is_checked() -> None:
-    names = []
-    for pkg in ('franka_msgs', 'franka_gripper'):
-        for kind in ('msg', 'srv', 'action'):
-            folder = os.path.join(DEFINITIONS, pkg, kind)
-            for fname in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
-                base = fname.rsplit('.', 1)[0]
-                if kind == 'action':
-                    names += ['%s/%s%s' % (pkg, base, part) for part in ACTION_PARTS]
-                else:
-                    names.append('%s/%s' % (pkg, base))
-    assert sorted(names) == sorted(UPSTREAM)
+    assert types_defined_here(('franka_msgs', 'franka_gripper')) == sorted(UPSTREAM)
 
 
 def test_franka_state_keeps_upstreams_robot_mode_constants() -> None:
