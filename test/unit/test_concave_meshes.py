@@ -10,6 +10,7 @@ import numpy as np
 import pybullet as p
 import pytest
 
+from _arm1sim.bench.dense_meshes import write_mesh
 from _arm1sim.description.limits import Limits
 from _arm1sim.description.sdf_world import WorldConfig
 from _arm1sim.physics import convex_pieces, mesh_cache
@@ -50,33 +51,6 @@ def cube_triangles(size=0.03):
     return np.array([t for f in faces for t in _quad(*(c[i] for i in f))], dtype=float)
 
 
-def write_obj(path, tris):
-    with open(path, 'w') as f:
-        for t in tris:
-            f.writelines('v %r %r %r\n' % tuple(v) for v in t)
-        f.writelines('f %d %d %d\n' % (3 * i + 1, 3 * i + 2, 3 * i + 3) for i in range(len(tris)))
-
-
-def write_dae(path, tris):
-    flat = ' '.join('%r' % v for v in tris.reshape(-1))
-    index = ' '.join(str(i) for i in range(3 * len(tris)))
-    with open(path, 'w') as f:
-        f.write(
-            '<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" '
-            'version="1.4.1"><asset><unit meter="0.001"/><up_axis>Z_UP</up_axis></asset>'
-            '<library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" '
-            'count="%d">%s</float_array><technique_common><accessor source="#pa" count="%d" '
-            'stride="3"><param name="X" type="float"/><param name="Y" type="float"/>'
-            '<param name="Z" type="float"/></accessor></technique_common></source>'
-            '<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>'
-            '<triangles count="%d"><input semantic="VERTEX" source="#v" offset="0"/><p>%s</p>'
-            '</triangles></mesh></geometry></library_geometries><library_visual_scenes>'
-            '<visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node>'
-            '</visual_scene></library_visual_scenes><scene><instance_visual_scene url="#s"/>'
-            '</scene></COLLADA>' % (tris.size, flat, 3 * len(tris), len(tris), index)
-        )
-
-
 def test_a_cube_is_convex_and_a_u_is_concave_by_its_slot():
     assert concavity(cube_triangles()) == pytest.approx(0.0, abs=1e-9)
     # the inner wall x = W - T, facing -x, has the left prong 30 mm in front of it
@@ -87,12 +61,7 @@ def test_a_cube_is_convex_and_a_u_is_concave_by_its_slot():
 def test_stl_obj_and_dae_read_alike(tmp_path, ext):
     path = str(tmp_path / ('u' + ext))
     tris = u_triangles()
-    if ext == '.stl':
-        write_binary_stl(path, tris)
-    elif ext == '.obj':
-        write_obj(path, tris)
-    else:
-        write_dae(path, tris * 1000)  # in millimetres, <unit meter="0.001">
+    write_mesh(path, tris)  # .dae in millimetres, <unit meter="0.001">
     read = mesh_triangles(path)
     assert read.shape == tris.shape
     assert np.allclose(np.sort(read.reshape(-1, 3), axis=0), np.sort(tris.reshape(-1, 3), axis=0))
