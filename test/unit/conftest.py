@@ -40,6 +40,10 @@ class FakePublisher:
     def __init__(self, topic: str, type_name: str, queue_size: int) -> None:
         self.topic, self.type_name, self.queue_size = topic, type_name, queue_size
         self.messages: List[Fields] = []
+        self.subscribed = True  # a test sets False: nobody listens (what wanted() says)
+
+    def wanted(self) -> bool:
+        return self.subscribed
 
     def publish(self, fields: Fields) -> None:
         self.messages.append(fields)

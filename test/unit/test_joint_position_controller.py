@@ -206,3 +206,24 @@ def test_state_set_point_reports_the_clamped_command():
     rig.update()
     assert rig.states()[-1]['set_point'] == pytest.approx(0.2)
     assert rig.states()[-1]['error'] == pytest.approx(0.2)
+
+
+def test_state_nobody_subscribes_to_is_not_built_and_the_control_is_the_same():
+    """As roscpp serialises nothing for a topic without subscribers: the state of the
+    updates nobody listens to is skipped, the efforts and the every-tenth schedule are not."""
+    heard, deaf = Rig('flap_joint', {'p': 2.0, 'd': 0.01}), Rig('flap_joint', {'p': 2.0, 'd': 0.01})
+    (pub,) = deaf.ros.publishers[NS + '/c/state']
+    pub.subscribed = False
+    efforts = {id(heard): [], id(deaf): []}
+    for rig in (heard, deaf):
+        rig.at(0.1, 0.05)
+        rig.start()
+        rig.command(0.4)
+        for k in range(25):
+            if k == 15 and rig is deaf:
+                pub.subscribed = True  # a subscriber comes: the next tenth update is sent
+            rig.update()
+            efforts[id(rig)].append(rig.c.joint.command)
+    assert efforts[id(heard)] == efforts[id(deaf)]
+    assert [s['stamp'] for s in deaf.states()] == [heard.states()[2]['stamp']]
+    assert deaf.states()[0] == heard.states()[2]

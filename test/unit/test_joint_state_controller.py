@@ -123,3 +123,21 @@ def test_restart_publishes_again_at_once():
     c.stopping(10 * STEP_NS)
     run(c, 1, start_ns=20 * STEP_NS)
     assert len(ros.messages('/mixed_ns/joint_states')) == 2
+
+
+def test_nobody_subscribed_builds_nothing_and_keeps_the_schedule():
+    """joint_states nobody listens to is not built; the publish times stay those of a
+    listened topic, so a subscriber that comes hears the same stamps."""
+    heard, _, _, heard_ros = make({'publish_rate': 50})
+    deaf, _, _, ros = make({'publish_rate': 50})
+    (pub,) = ros.publishers['/mixed_ns/joint_states']
+    pub.subscribed = False
+    run(heard, 70)
+    run(deaf, 45)
+    assert pub.messages == []
+    pub.subscribed = True
+    for k in range(45, 70):
+        deaf.update(k * STEP_NS, STEP_NS)
+    stamps = [m['stamp'] for m in heard_ros.messages('/mixed_ns/joint_states')]
+    assert [m['stamp'] for m in pub.messages] == [t for t in stamps if t >= 45 * STEP_NS]
+    assert len(pub.messages) == 1

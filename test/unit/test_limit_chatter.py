@@ -63,3 +63,15 @@ def test_try_robot_reports_the_chatter_warning_as_a_problem():
     }
     v = report.verdict(rep)
     assert v == {'ok': False, 'problems': [message]}
+
+
+def test_a_non_finite_velocity_breaks_a_run():
+    """NaN is beyond no limit: it ends a run of flips, as a velocity within the limit does."""
+    watch = LimitChatterWatch([('a', 0.5)])
+    for k in range(STEPS - 1):
+        assert watch.observe([2.0 * (1 if k % 2 else -1)]) == []
+    assert watch.observe([float('nan')]) == []
+    found = []  # a run starts again: STEPS flips need STEPS + 1 velocities
+    for k in range(STEPS + 1):
+        found.append(watch.observe([2.0 * (1 if k % 2 else -1)]))
+    assert found[:-1] == [[]] * STEPS and found[-1] == [('a', 0.5)]

@@ -34,6 +34,11 @@ Params = Dict[str, Any]  # a parameter subtree, as ``rosparam get <namespace>`` 
 class Publisher(Protocol):
     def publish(self, fields: Fields) -> None: ...
 
+    def wanted(self) -> bool:
+        """Whether a publish now would reach anyone: a controller's hot loop builds no fields
+        for nobody (roscpp serialises nothing for a topic without subscribers either)."""
+        ...
+
 
 class GoalHandle(Protocol):
     """One goal of an action server (actionlib's ServerGoalHandle). ``goal`` is the goal

@@ -85,6 +85,6 @@ class JointPositionController(JointPidController):
             effort = c.pid.compute_command(error, dt)
             joint.command = effort
             count = c._loop_count
-            if count % STATE_PUBLISH_DIVIDER == 0:
+            if count % STATE_PUBLISH_DIVIDER == 0 and c._state_pub.wanted():
                 c._state_pub.publish(c._state(time_ns, set_point, error, dt, effort))
             c._loop_count = count + 1

@@ -65,13 +65,19 @@ class JointStateController(Controller):
             self.last_publish_ns += self.publish_period_ns  # exactly one period on: no drift
         else:
             return
+        pub = self._pub
+        if not pub.wanted():
+            return  # nobody listens: the schedule above goes on, no message is built
         joints, extra = self.joints, self._extra
-        self._pub.publish(
+        position = [j.position for j in joints]
+        velocity = [j.velocity for j in joints]
+        effort = [j.effort for j in joints]
+        if extra:
+            position += [e[1] for e in extra]
+            velocity += [e[2] for e in extra]
+            effort += [e[3] for e in extra]
+        pub.publish(
             dict(
-                stamp=time_ns,
-                name=self._names,
-                position=[j.position for j in joints] + [e[1] for e in extra],
-                velocity=[j.velocity for j in joints] + [e[2] for e in extra],
-                effort=[j.effort for j in joints] + [e[3] for e in extra],
+                stamp=time_ns, name=self._names, position=position, velocity=velocity, effort=effort
             )
         )

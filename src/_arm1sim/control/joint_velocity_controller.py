@@ -23,7 +23,7 @@ class JointVelocityController(JointPidController):
         dt = period_ns * 1e-9
         effort = self.pid.compute_command(error, dt)
         self.joint.command = effort
-        if self._loop_count % STATE_PUBLISH_DIVIDER == 0:
+        if self._loop_count % STATE_PUBLISH_DIVIDER == 0 and self._state_pub.wanted():
             state = self._state(time_ns, self.target, error, dt, effort)
             # The process value is the velocity; upstream leaves process_value_dot unset (0).
             state.update(process_value=self.joint.velocity, process_value_dot=0.0)

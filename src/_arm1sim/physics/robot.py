@@ -196,6 +196,11 @@ class Robot:
         """``[(position, velocity), ...]`` of the given joints."""
         return [s[:2] for s in self._joint_states(indices)]
 
+    def joint_states(self, indices):
+        """pybullet's state of each joint as it gives it, ``(position, velocity, ...)``: read
+        without copying (the hardware's read every control update)."""
+        return self._joint_states(indices)
+
     def _joint_states(self, indices):
         # pybullet answers None, not [], when asked for no joints (a body without joints).
         if not indices:

@@ -50,8 +50,11 @@ class SurfaceCombiner:
 
     def update(self) -> None:
         """Values for the pairs touching now; nothing to do while they stay the same."""
+        contacts = p.getContactPoints(physicsClientId=self.client)
+        if not contacts and not self.pairs:
+            return  # nothing touches, as before (most steps of an arm in the air)
         pairs = set()
-        for c in p.getContactPoints(physicsClientId=self.client):
+        for c in contacts:
             a, b = (c[1], c[3]), (c[2], c[4])
             if a in self.values and b in self.values:
                 pairs.add((a, b) if a <= b else (b, a))

@@ -35,19 +35,30 @@ class LimitChatterWatch:
     def __init__(self, joints: Sequence[Tuple[str, float]]) -> None:
         """``joints``: (name, velocity limit) of the effort joints with a finite one."""
         self.joints = list(joints)
-        self._previous = [0.0] * len(self.joints)
+        self._limits = [limit for _, limit in self.joints]
+        self._previous: Sequence[float] = [0.0] * len(self.joints)
         self._run = [0] * len(self.joints)
         self.reported: List[str] = []
 
     def observe(self, velocities: Sequence[float]) -> List[Tuple[str, float]]:
+        """``velocities`` is kept as the next step's previous ones: hand a new sequence each
+        step (it is read, never changed)."""
         found = []
-        for k, ((name, limit), v) in enumerate(zip(self.joints, velocities)):
-            before, self._previous[k] = self._previous[k], v
+        previous, self._previous = self._previous, velocities
+        runs, limits = self._run, self._limits
+        for k, v in enumerate(velocities):
+            limit = limits[k]
+            if -limit <= v <= limit:  # within the limit (every step, usually): no chatter
+                if runs[k]:
+                    runs[k] = 0
+                continue
+            before = previous[k]
             if abs(v) > limit and abs(before) > limit and (v > 0) != (before > 0):
-                self._run[k] += 1
-                if self._run[k] == STEPS and name not in self.reported:
+                runs[k] += 1
+                name = self.joints[k][0]
+                if runs[k] == STEPS and name not in self.reported:
                     self.reported.append(name)
                     found.append((name, limit))
             else:
-                self._run[k] = 0
+                runs[k] = 0
         return found

@@ -243,6 +243,9 @@ class DefaultRobotHWSim:
         """``period``: seconds between writes (the physics step); ``pid_gains``: joint ->
         gains dict, the parameters under ``gazebo_ros_control/pid_gains``."""
         self.robot = robot
+        # Each joint's state starting (position, velocity): physics.robot.Robot's own tuples
+        # when it offers them (no copy per read), else SimulatedJoints.read's pairs.
+        self._read_states = getattr(robot, 'joint_states', robot.read)
         self.period = period
         self.handles: Dict[str, JointHandle] = {}
         for joint, interface in description.actuated_joints():
@@ -381,8 +384,9 @@ class DefaultRobotHWSim:
         """Each joint has one interface: a switch changes nothing here."""
 
     def read(self, time_ns: int = 0, period_ns: int = 0) -> None:
-        for h, (pos, vel) in zip(self._ordered, self.robot.read(self._indices)):
-            h.position, h.velocity = pos, vel
+        for h, state in zip(self._ordered, self._read_states(self._indices)):
+            h.position = state[0]
+            h.velocity = state[1]
 
     def write(self) -> None:
         if self._plain_efforts:

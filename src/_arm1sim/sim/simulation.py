@@ -330,7 +330,7 @@ class Simulation:
     def step(self) -> None:
         """One physics iteration: read and update controllers (each model at its control
         period), write, step."""
-        now = self.time_ns
+        now = self.steps * self.step_ns  # time_ns, without the property's call
         for model in self._controlled:
             if model.control is not None:
                 model.control.update(now)
@@ -338,10 +338,11 @@ class Simulation:
             hook(now)
         self.world.step()
         self.steps += 1
+        now += self.step_ns
         for sensor in self._sensors:
-            sensor.update(self.time_ns)
+            sensor.update(now)
         if self.sensors.cameras:
-            self.sensors.update(self.time_ns, self._robot_states)
+            self.sensors.update(now, self._robot_states)
 
     def _robot_states(self) -> Dict[str, Any]:
         return {name: model.robot.state() for name, model in self.models.items()}

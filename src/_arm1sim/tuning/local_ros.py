@@ -86,6 +86,9 @@ class LocalPublisher:
     def __init__(self, ros: LocalRos, topic: str, type_name: str) -> None:
         self.ros, self.topic, self.type_name = ros, topic, type_name
 
+    def wanted(self) -> bool:
+        return True  # the tuner reads every topic (last, recorded)
+
     def publish(self, fields: Fields) -> None:
         self.ros.last[self.topic] = fields
         log = self.ros.recorded.get(self.topic)

@@ -6,6 +6,14 @@ from typing import Any
 import rospy
 
 
+def subscribed(pub: rospy.Publisher) -> bool:
+    """Whether ``pub`` has a subscriber now, without get_num_connections' lock: rospy
+    replaces a topic's connection list on every change (copy on write), so reading it is
+    safe from any thread; the physics thread asks this every step or so."""
+    impl = pub.impl
+    return impl is not None and bool(impl.connections)
+
+
 def synchronous_publisher(topic: str, msg_class: type, **kwargs: Any) -> rospy.Publisher:
     """A publisher that writes in the caller's thread, for the physics thread's topics.
 

@@ -10,7 +10,7 @@ import rosgraph.masterapi
 import rospy
 
 from ...control.interfaces import Fields, Params
-from ..common.publishers import synchronous_publisher
+from ..common.publishers import subscribed, synchronous_publisher
 from .action_server import ActionServer
 from .messages import Fill, message, service
 
@@ -44,8 +44,11 @@ class _Publisher:
     def __init__(self, pub: rospy.Publisher, msg_class: type, fill: Fill) -> None:
         self.pub, self.fill, self.msg = pub, fill, msg_class()
 
+    def wanted(self) -> bool:
+        return subscribed(self.pub)
+
     def publish(self, fields: Fields) -> None:
-        if self.pub.get_num_connections():  # build no message nobody reads
+        if subscribed(self.pub):  # build no message nobody reads
             self.fill(self.msg, fields)
             self.pub.publish(self.msg)
 

@@ -38,6 +38,7 @@ from ...sim import model_state as ms
 from ...sim.model_state import State, StateError
 from ...sim.simulation import Simulation
 from ...sim.wrenches import JointEfforts, Wrenches
+from ..common.publishers import subscribed
 from .sim_thread import SimThreadCalls
 from .world_loop import WorldLoop
 
@@ -105,7 +106,7 @@ class LatestPublisher:
 
     def wanted(self) -> bool:
         """Subscribed, and within the budget (physics thread, before gathering a reading)."""
-        return self.publisher.get_num_connections() > 0 and self.budget.take()
+        return subscribed(self.publisher) and self.budget.take()
 
     def put(self, reading: Tuple[List[str], List[State]]) -> None:
         with self._cond:
