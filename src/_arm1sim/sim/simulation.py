@@ -36,6 +36,7 @@ from ..physics.laser import ray_casts_per_second
 from ..physics.robot import Robot, RobotLoadError
 from ..physics.sensor_manager import Camera, SensorManager
 from ..physics.sim_sensor import SimSensor
+from ..physics.visual_stand_ins import light_visuals
 from ..physics.world import World
 from .plugins import build_sensors
 from .plugins.mimic import mimic_links
@@ -66,7 +67,10 @@ class Model:
     cameras: List[Camera] = field(default_factory=list)  # one per camera sensor
     sensors: List[SimSensor] = field(default_factory=list)  # measured on the physics thread
     plugins: List[Plugin] = field(default_factory=list)  # the ROS layer's part, shut down on delete
-    file: str = ''  # the URDF file pybullet and the render processes load, in the world's folder
+    file: str = ''  # the URDF file the render processes load (and pybullet), in the world's folder
+    physics_file: str = ''  # the one pybullet loads when it differs (visual stand-ins)
+    # stand-in visual mesh file -> the file the URDF names (physics.visual_stand_ins)
+    visual_stand_ins: Dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -76,8 +80,11 @@ class PreparedUrdf:
     name: str
     description: RobotModel
     sensors: List[CameraSensor]
-    # World.load_robot's: file, position, orientation, fixed base, BodyOptions
+    # World.load_robot's: file, position, orientation, fixed base, BodyOptions (the render
+    # processes load this file)
     load_args: Tuple[str, Tuple[float, ...], Tuple[float, ...], bool, BodyOptions]
+    physics_file: str = ''  # what pybullet loads instead, when visuals were stood in for
+    visual_stand_ins: Dict[str, str] = field(default_factory=dict)
 
 
 ControllerManagerFactory = Callable[[RobotHWSim, str], ControllerManager]
@@ -180,6 +187,15 @@ class Simulation:
         path = os.path.join(self._tmp.name, 'model-%d.urdf' % next(self._files))
         with open(path, 'w') as f:
             f.write(resolved)
+        # A window shows what pybullet loads: with one, every visual is its own.
+        light, stand_ins = (
+            (resolved, {}) if self.world.gui else light_visuals(resolved, self._tmp.name)
+        )
+        physics_file = ''
+        if stand_ins:
+            physics_file = path[: -len('.urdf')] + '-physics.urdf'
+            with open(physics_file, 'w') as f:
+                f.write(light)
         return PreparedUrdf(
             name,
             description,
@@ -192,6 +208,8 @@ class Simulation:
                 description.root_link == 'world',
                 options,
             ),
+            physics_file,
+            stand_ins,
         )
 
     def spawn_prepared(
@@ -211,13 +229,22 @@ class Simulation:
             except LimitError as exc:
                 raise SpawnError("cannot spawn '%s': %s" % (name, exc))
             try:
-                robot = self.world.load_robot(*prepared.load_args)
+                robot = self.world.load_robot(
+                    prepared.physics_file or prepared.load_args[0], *prepared.load_args[1:]
+                )
             except RobotLoadError as exc:
                 raise SpawnError("cannot spawn '%s': %s" % (name, exc))
         except SpawnError:
-            os.unlink(prepared.load_args[0])
+            _remove_files(prepared.load_args[0], prepared.physics_file, *prepared.visual_stand_ins)
             raise
-        model = Model(name, prepared.description, robot, file=prepared.load_args[0])
+        model = Model(
+            name,
+            prepared.description,
+            robot,
+            file=prepared.load_args[0],
+            physics_file=prepared.physics_file,
+            visual_stand_ins=prepared.visual_stand_ins,
+        )
         robot.set_mimics(mimic_links(prepared.description))
         try:
             self._attach_plugins(model, robot_namespace, controller_manager_factory)
@@ -296,8 +323,7 @@ class Simulation:
         self.sensors.remove_robot(model.name)
         if model.robot in self.world.robots:
             self.world.remove_robot(model.robot)
-        if model.file and os.path.exists(model.file):
-            os.unlink(model.file)
+        _remove_files(model.file, model.physics_file, *model.visual_stand_ins)
 
     def delete_model(self, name: str) -> Model:
         model = self.models.pop(name, None)
@@ -367,6 +393,12 @@ class Simulation:
         self.sensors.close()
         self.world.close()
         self._tmp.cleanup()
+
+
+def _remove_files(*paths: str) -> None:
+    for path in paths:
+        if path and os.path.exists(path):
+            os.unlink(path)
 
 
 def _no_packages(name: str) -> str:

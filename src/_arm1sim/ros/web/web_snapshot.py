@@ -89,8 +89,9 @@ POSITION_COMMANDED = ('JointPositionController', 'JointGroupPositionController')
 TRAJECTORY = 'JointTrajectoryController'
 
 
-def visuals_of(client: int, body: int) -> List[Visual]:
-    """A body's visual shapes (pybullet's parse of the URDF: ``<visual>``, ``<material>``)."""
+def visuals_of(client: int, body: int, stand_ins: Optional[Dict[str, str]] = None) -> List[Visual]:
+    """A body's visual shapes (pybullet's parse of the URDF: ``<visual>``, ``<material>``);
+    a mesh pybullet was handed a stand-in for is named by its own file (``stand_ins``)."""
     out = []
     for d in p.getVisualShapeData(body, physicsClientId=client):
         _, link, kind, dims, mesh, pos, orn, rgba = d[:8]
@@ -104,6 +105,7 @@ def visuals_of(client: int, body: int) -> List[Visual]:
         else:
             size = tuple(float(v) for v in dims[:3])
         path = mesh.decode() if isinstance(mesh, bytes) else str(mesh)
+        path = (stand_ins or {}).get(path, path)
         out.append(
             Visual(
                 link,
@@ -253,7 +255,7 @@ class WorldSnapshots:
                 controllers_of(model),
             )
             if token not in self.known:
-                snap.visuals[token] = visuals_of(client, robot.body)
+                snap.visuals[token] = visuals_of(client, robot.body, model.visual_stand_ins)
         scenery = zip(sim.config.models, getattr(sim.world, 'scenery', []))
         for index, (static, bodies) in enumerate(scenery):
             # the world file's static models: one body per shape, never moving
