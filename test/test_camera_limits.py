@@ -22,9 +22,14 @@ from camera_util import (  # noqa: E402
     render_processes,
     spawn_urdf,
 )
+from faults_util import ClockPace  # noqa: E402
 from rostest_util import WorldTestCase, wait_for  # noqa: E402
 
 TOPIC = '/eye/image_raw'
+# From the kill until the images are back, the real-time factor at least this share of the
+# world's own pace right after, with the camera streaming again: what the machine gives the
+# world is judged, not the machine (a world that waited for its dead renderer falls to ~0).
+MIN_PACE_RATIO = 0.9
 
 
 def publishers(topic):
@@ -96,11 +101,17 @@ class CameraLimits(WorldTestCase):
                 60,
             )
             self.assertTrue(back, 'images or render processes did not come back')
+            rtf = clock_rate(self.clock, killed_at)
+            base = ClockPace(self.clock).baseline(3.0)
         finally:
             images.close()
-        rtf = clock_rate(self.clock, killed_at)
-        print('killed render process %d: real-time factor since %.3f' % (victims[0], rtf))
-        self.assertGreater(rtf, 0.9, 'the world slowed down for a dead render process')
+        print(
+            'killed render process %d: real-time factor since %.3f (%.3f after)'
+            % (victims[0], rtf, base)
+        )
+        self.assertGreater(
+            rtf, MIN_PACE_RATIO * base, 'the world slowed down for a dead render process'
+        )
         errors = [m.msg for m in self.rosout.since(killed_at) if m.level == Log.ERROR]
         self.assertTrue(any("'eye'" in e and 'killed by signal 9' in e for e in errors), errors)
 
