@@ -40,6 +40,7 @@ ACTION = '/arm1/arm_controller/follow_joint_trajectory'
 GAP_MARGIN = 0.5  # wall s a /clock gap (100 Hz of sim time) may exceed the baseline's longest
 BIG_GOAL_GAP_MARGIN = 1.0  # the same while the world decodes a 100 000-point goal
 MIN_RTF_RATIO = 0.5  # of the baseline's real-time factor, over a case's window (old: ~0.05)
+HELD_ANSWER_S = 2.0  # wall s: answered in ms even with both cores busy; held, 9.5 s
 BASELINE = 2.0  # sim s of the baseline window
 CLIENT = '--hostile-client'
 MAX_STATUS = 110  # entries of one status message: MAX_FINISHED (100) + the live ones
@@ -245,8 +246,9 @@ class FaultsTrajectory(WorldTestCase):
             ok, back = set_rate(before.max_update_rate)
         print('answers in a 10 s step: get %.3f s, set back %.3f s' % (first, back))
         self.assertTrue(ok)
-        self.assertLess(first, 2.0)
-        self.assertLess(back, 2.0)
+        # Only an answer held by the step fails (3-73 ms on a quiet machine, docs/faults.md).
+        self.assertLess(first, HELD_ANSWER_S)
+        self.assertLess(back, HELD_ANSWER_S)
         stamp = self.clock.last().clock.to_sec()
         self.assertTrue(wait_for(lambda: self.clock.last().clock.to_sec() > stamp + 0.2, 60))
 
