@@ -32,6 +32,10 @@ CM = '/arm1/controller_manager/'
 BEST_EFFORT, STRICT = 1, 2
 CONTROLLERS = 5  # joint_state_controller and four position controllers
 HUGE = 1e200
+# After a refused 200-joint robot, the real-time factor over a sim second at least this share
+# of the world's pace just before it (a robot left half-built in the physics would slow the
+# world); an absolute 0.3 of real time was asked before, which a busy machine alone can break
+MIN_PACE_RATIO = 0.5
 
 
 def finite(*values):
@@ -139,6 +143,7 @@ class FaultsRequests(WorldTestCase):
     # case 8 -------------------------------------------------------------------------------
     def test_a_robot_of_200_joints_is_refused_whole_naming_the_limit(self):
         before = set(self.world_props().model_names)
+        base = self.pace.baseline(2.0)
         resp = self.world.spawn('two_hundred', urdf('two_hundred', links=201))
         self.assertFalse(resp.success)
         self.assertIn('two_hundred', resp.status_message)
@@ -146,7 +151,9 @@ class FaultsRequests(WorldTestCase):
         self.assertEqual(set(self.world_props().model_names), before, 'something stayed')
         start = self.pace.now()
         sim_wait(1.0)
-        self.assertGreater(ClockPace.factor(start, self.pace.now()), 0.3, 'the world slowed')
+        factor = ClockPace.factor(start, self.pace.now())
+        print('after the 200-joint robot: real-time factor %.3f (before: %.3f)' % (factor, base))
+        self.assertGreater(factor, MIN_PACE_RATIO * base, 'the world slowed: %.3f' % factor)
         resp = self.world.spawn('two_hundred', urdf('two_hundred', links=20))
         self.assertTrue(resp.success, resp.status_message)  # the name is free
         self.assertTrue(self.world.delete('two_hundred').success)
