@@ -27,9 +27,10 @@ from rostest_util import WorldTestCase, wait_for  # noqa: E402
 
 TOPIC = '/eye/image_raw'
 # From the kill until the images are back, the real-time factor at least this share of the
-# world's own pace right after, with the camera streaming again: what the machine gives the
-# world is judged, not the machine (a world that waited for its dead renderer falls to ~0).
-MIN_PACE_RATIO = 0.9
+# world's own pace right after, with the camera streaming again: the world is judged, not the
+# machine. A world that waited out the 0.5 s before the new renderer would keep ~0.6 over the
+# ~1.2 s; 0.93 of it was seen with four other busy sessions on the 2 cores, 1.0 otherwise.
+MIN_PACE_RATIO = 0.8
 
 
 def publishers(topic):
