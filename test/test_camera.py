@@ -100,16 +100,21 @@ class Camera(WorldTestCase):
         used = sum(cpu_seconds(r) for r in renderers) - before
         self.assertLess(used, 0.05, 'rendering used %.2f s of CPU with nobody watching' % used)
 
+    def where(self):
+        """The arm's newest joint positions, for a failure's message."""
+        last = self.arm.states.last()
+        return tuple(round(v, 3) for v in last.position) if last else None
+
     def test_04_blank_sky_is_uniform_the_horizon_is_not(self):
         images = ImageRecorder()
         try:
             at = self.arm.go(UP)
-            self.assertIsNotNone(at, 'the arm did not get upright')
+            self.assertIsNotNone(at, 'the arm did not get upright (at %s)' % (self.where(),))
             sky = images.frame_after(at)
             self.assertIsNotNone(sky, 'no frame')
             self.assertTrue(uniform(sky), 'upright, the camera sees more than sky')
             at = self.arm.go(LOOK)
-            self.assertIsNotNone(at, 'the arm did not get to %s' % (LOOK,))
+            self.assertIsNotNone(at, 'the arm did not get to %s (at %s)' % (LOOK, self.where()))
             view = images.frame_after(at)
             self.assertFalse(uniform(view), 'looking at the horizon, the image is uniform')
         finally:
