@@ -19,19 +19,18 @@ def bottom_gap(sim, model):
 def test_a_falling_box_is_stopped_once_it_touches_not_before(sink):
     # ODE makes a contact when two shapes overlap and pushes them apart from there (ERP);
     # Bullet would also solve a manifold's points that are still apart, stopping a body
-    # short of the ground on the step it would reach it. A box 1.8 mm above the ground
-    # (its contact 0.8 mm apart with pybullet's margin: in its manifold, beyond
-    # CONTACT_SOLVED_WITHIN), sent down fast enough to end the step 0.5-1 mm into it,
-    # does sink in, as in Gazebo.
+    # short of the ground on the step it would reach it. A box 1.5 mm above the ground
+    # (within its manifold's reach), sent down fast enough to end the step 0.5-1 mm into
+    # it, does sink in, as in Gazebo.
     sim = world(ground=True)
     try:
         model = sim.spawn_urdf(
-            'b', robot(box('base', 1.0, SIZE)), position=(0, 0, SIZE / 2 + 0.0018)
+            'b', robot(box('base', 1.0, SIZE)), position=(0, 0, SIZE / 2 + 0.0015)
         )
         client, body = sim.world.client, model.robot.body
         sim.step()  # the manifold is made while the box is still apart
         gap = bottom_gap(sim, model)
-        assert gap == pytest.approx(0.0018, abs=1e-4)
+        assert gap == pytest.approx(0.0015, abs=1e-4)
         p.resetBaseVelocity(body, (0, 0, -(gap + sink) / 0.001), (0, 0, 0), physicsClientId=client)
         sim.step()
         assert bottom_gap(sim, model) == pytest.approx(-sink, abs=1e-4)

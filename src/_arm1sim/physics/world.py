@@ -155,20 +155,16 @@ class World:
 
 GROUND_HALF_SIZE = 500.0  # m: the ground's reach from its origin (Gazebo's plane is infinite)
 GROUND_HALF_DEPTH = 0.5  # m: deep enough that nothing falling onto it passes through
-CONTACT_SOLVED_WITHIN = 0.0005  # m: how far apart a contact point is still solved
 
 
 def solve_contacts_once_touching(body, links, client):
-    """Contacts enter the solver once the shapes (nearly) touch, as ODE makes them at depth
-    >= 0. Bullet also solves the points of a manifold that lie apart (up to 2 cm), each a
-    normal and two friction rows every iteration: arm1 lying on the ground had one touching
-    point and six 1.2 mm apart, which made up a third of its step. CONTACT_SOLVED_WITHIN
-    keeps a squeezed grip's points, which flicker about zero, in the solve. A threshold is
-    fixed when two bodies' manifold is made, so it is set as a body is built."""
+    """Contacts enter the solver once the shapes touch, as ODE makes them (depth >= 0).
+    Bullet also solves the points of a manifold that lie apart (up to 2 cm), each a normal
+    and two friction rows every iteration: arm1 lying on the ground had one touching point
+    and six 1.2 mm apart, which made up a third of its step. A threshold is fixed when two
+    bodies' manifold is made, so it is set as a body is built."""
     for link in links:
-        p.changeDynamics(
-            body, link, contactProcessingThreshold=CONTACT_SOLVED_WITHIN, physicsClientId=client
-        )
+        p.changeDynamics(body, link, contactProcessingThreshold=0.0, physicsClientId=client)
 
 
 def _ground_shape(normal, client):
