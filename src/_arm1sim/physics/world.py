@@ -92,7 +92,6 @@ class World:
                 model.pose[:3], quat, s.pose[:3], p.getQuaternionFromEuler(s.pose[3:])
             )
             bodies.append(p.createMultiBody(0, col, vis, pos, orn, physicsClientId=cid))
-            solve_contacts_once_touching(bodies[-1], [-1], cid)
             surface = getattr(model, 'surface', None) or Surface()
             self.surfaces.add(bodies[-1], -1, surface.friction, surface.restitution)
         return bodies
@@ -117,7 +116,6 @@ class World:
                 raise RobotLoadError('pybullet could not build the robot (%s)' % exc)
             raise
         self.robots.append(robot)
-        solve_contacts_once_touching(robot.body, robot.link_index.values(), self.client)
         surfaces = options.surfaces if options is not None else {}
         for name, index in robot.link_index.items():
             surface = surfaces.get(name) or Surface()
@@ -155,16 +153,6 @@ class World:
 
 GROUND_HALF_SIZE = 500.0  # m: the ground's reach from its origin (Gazebo's plane is infinite)
 GROUND_HALF_DEPTH = 0.5  # m: deep enough that nothing falling onto it passes through
-
-
-def solve_contacts_once_touching(body, links, client):
-    """Contacts enter the solver once the shapes touch, as ODE makes them (depth >= 0).
-    Bullet also solves the points of a manifold that lie apart (up to 2 cm), each a normal
-    and two friction rows every iteration: arm1 lying on the ground had one touching point
-    and six 1.2 mm apart, which made up a third of its step. A threshold is fixed when two
-    bodies' manifold is made, so it is set as a body is built."""
-    for link in links:
-        p.changeDynamics(body, link, contactProcessingThreshold=0.0, physicsClientId=client)
 
 
 def _ground_shape(normal, client):
