@@ -15,7 +15,7 @@ from std_msgs.msg import Float64
 
 from _arm1sim.goal.image import is_uniform
 
-UP = (0.0, 1.57, 0.0, 0.0)  # arm upright: the camera at its tip sees only the sky
+UP = (0.0, 1.5, 0.0, 0.0)  # arm upright: the camera at its tip sees only the sky
 LOOK = (0.0, 0.6, -0.4, -0.4)  # look_away's default pose: the horizon
 
 
