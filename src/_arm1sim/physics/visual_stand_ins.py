@@ -42,10 +42,8 @@ def light_visuals(urdf_xml: str, folder: str) -> Tuple[str, Dict[str, str]]:
     root = ET.fromstring(urdf_xml)
     stand_ins: Dict[str, str] = {}
     for mesh in root.iterfind('link/visual/geometry/mesh'):
-        path = mesh.get('filename', '')
-        if path.startswith('file://'):
-            path = path[len('file://') :]
-        if not path or not over_budget(path):
+        path = mesh.get('filename', '')  # a plain path: resolve_mesh_uris made it one
+        if not over_budget(path):
             continue
         fd, stand_in = tempfile.mkstemp(suffix='.stl', prefix='visual-stand-in-', dir=folder)
         os.close(fd)
