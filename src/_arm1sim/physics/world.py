@@ -92,6 +92,13 @@ class World:
                 model.pose[:3], quat, s.pose[:3], p.getQuaternionFromEuler(s.pose[3:])
             )
             bodies.append(p.createMultiBody(0, col, vis, pos, orn, physicsClientId=cid))
+            # Before any manifold with it is made: a manifold keeps the threshold it was made with
+            p.changeDynamics(
+                bodies[-1],
+                -1,
+                contactProcessingThreshold=SCENERY_CONTACT_WITHIN,
+                physicsClientId=cid,
+            )
             surface = getattr(model, 'surface', None) or Surface()
             self.surfaces.add(bodies[-1], -1, surface.friction, surface.restitution)
         return bodies
@@ -153,6 +160,13 @@ class World:
 
 GROUND_HALF_SIZE = 500.0  # m: the ground's reach from its origin (Gazebo's plane is infinite)
 GROUND_HALF_DEPTH = 0.5  # m: deep enough that nothing falling onto it passes through
+# m: how far apart a contact point with the world's static scenery is still solved. ODE makes
+# a contact at depth >= 0; Bullet also solves a manifold's points up to 2 cm apart, each a
+# normal and two friction rows every iteration: arm1 lying on the ground as launched had one
+# touching point and six 1.2 mm apart. A manifold takes the smaller of its two bodies'
+# thresholds, so this reaches contacts with scenery only: between two moving bodies (a
+# gripper's fingers on a can, whose points flicker about zero) Bullet's default stays.
+SCENERY_CONTACT_WITHIN = 0.0005
 
 
 def _ground_shape(normal, client):
