@@ -649,6 +649,7 @@ def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(
     step_until(sim, lambda: frames, 60, pacer)  # the render processes are up
     seconds = 2.0 if lockstep else 4.0
     wall0, sim0, count = time.perf_counter(), sim.time_ns, len(frames)
+    queued0 = run_queue_seconds()
     step_until(
         sim,  # and six frames in lockstep (at a few hundredths of real time, 2 s hold ~3),
         # two in default timing (the renderers run at nice 10: a busy machine can starve
@@ -659,11 +660,13 @@ def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(
         60,
         pacer,
     )
-    rtf = (sim.time_ns - sim0) * 1e-9 / (time.perf_counter() - wall0)
+    wall = time.perf_counter() - wall0
+    queued = run_queue_seconds() - queued0  # what a busy machine kept the thread waiting
+    rtf = (sim.time_ns - sim0) * 1e-9 / wall
     rate = (len(frames) - count) / ((sim.time_ns - sim0) * 1e-9)
     print(
-        '%s: real-time factor %.3f, %.1f images per sim second'
-        % ('lockstep' if lockstep else 'default', rtf, rate)
+        '%s: real-time factor %.3f, %.1f images per sim second, %.3f s waiting for a CPU'
+        % ('lockstep' if lockstep else 'default', rtf, rate, queued)
     )
     if lockstep:  # every 30 Hz instant gets its frame, and the world slows down for them
         # Judged by the frames' stamps, not by a count over a short window whose last frame
@@ -672,8 +675,9 @@ def test_a_heavy_camera_lowers_its_image_rate_not_the_real_time_factor(
         gaps = [(b - a) * 1e-9 for a, b in zip(stamps, stamps[1:])]
         assert len(stamps) >= 5 and max(gaps) <= 1 / 30 + 2 * sim.period, gaps
         assert rtf < 0.8
-    else:
-        assert rtf >= 0.99 and 0 < rate < 25
+    else:  # sim time lost no more than the machine's load kept the thread from a CPU
+        assert (1 - rtf) * wall <= 0.01 * wall + queued, (rtf, queued)
+        assert 0 < rate < 25
 
 
 def decode_png(data):
