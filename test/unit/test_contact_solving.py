@@ -10,16 +10,9 @@ START = 0.0018  # m over the ground: in the manifold's reach, beyond SCENERY_CON
 
 
 def bottom_of(sim, body):
+    """Height of the box's bottom face over the ground (negative: sunk into it)."""
     (x, y, z), _ = p.getBasePositionAndOrientation(body, physicsClientId=sim.world.client)
     return z - SIZE / 2
-
-
-def send_down(sim, body, top_of_what_is_below, sink):
-    """Velocity that ends the next step ``sink`` into what lies below, had nothing stopped it."""
-    gap = bottom_of(sim, body) - top_of_what_is_below
-    p.resetBaseVelocity(
-        body, (0, 0, -(gap + sink) / 0.001), (0, 0, 0), physicsClientId=sim.world.client
-    )
 
 
 @pytest.mark.parametrize('sink', [0.0005, 0.001])
@@ -33,16 +26,19 @@ def test_a_box_falling_onto_the_ground_stops_once_it_touches_not_before(sink):
         model = sim.spawn_urdf(
             'b', robot(box('base', 1.0, SIZE)), position=(0, 0, SIZE / 2 + START)
         )
-        body = model.robot.body
+        client, body = sim.world.client, model.robot.body
         sim.step()  # the manifold is made while the box is still apart
-        assert bottom_of(sim, body) == pytest.approx(START, abs=1e-4)
-        send_down(sim, body, 0.0, sink)
+        gap = bottom_of(sim, body)
+        assert gap == pytest.approx(START, abs=1e-4)
+        p.resetBaseVelocity(
+            body, (0, 0, -(gap + sink) / sim.period), (0, 0, 0), physicsClientId=client
+        )
         sim.step()
         assert bottom_of(sim, body) == pytest.approx(-sink, abs=1e-4)
         for _ in range(500):  # then is pushed back out, resting as a box set down does
             sim.step()
         assert 0.0 < bottom_of(sim, body) < 0.0015  # within pybullet's 1 mm margin
-        velocity, _ = p.getBaseVelocity(body, physicsClientId=sim.world.client)
+        velocity, _ = p.getBaseVelocity(body, physicsClientId=client)
         assert abs(velocity[2]) < 1e-3
     finally:
         sim.close()
