@@ -511,8 +511,15 @@ def unmet_section(results: Results) -> str:
             'wake-up: %.0f µs of CPU on this virtual machine). Tried: more steps per wake-up '
             '(world_loop.STEPS_PER_WAKE 10 and 20 against 2, launched world, interleaved: '
             'medians 0.191 and 0.180 against 0.203 core-seconds per simulated second). '
-            'Left: a cheaper resting contact of a compound on the ground without changing what '
-            'touches what (putting the resting arm to sleep changed nothing: it never slept).'
+            'Contacts with static scenery are solved only within 0.5 mm (2026-11-27: 0.188 '
+            'before, 0.13-0.16 after). Measured apart (ROS-free, back to back, 2026-11-28, '
+            'a loaded machine): the lying step costs 57 µs against 17 upright; each link as '
+            'its hull 35-38; the pieces against everything but the ground and a hull on a '
+            'fixed child link against the ground only (pybullet\'s collision filter in its '
+            'AND mode) 49, 42 with solverResidualThreshold 1e-5: the extra links take back '
+            'half of what the hull saves, short of the goal. Left: a cheaper resting '
+            'contact of a compound on the ground (putting the resting arm to sleep changed '
+            'nothing: it never slept).'
             % (
                 cpu,
                 'not measured in this run' if upright is None else '%.3f of a core' % upright,
