@@ -3,10 +3,10 @@
 import threading
 import time
 
-# A wake-up costs 25-70 µs of CPU on a 2-core virtual machine (2026-11-28: time.sleep of
-# 1.8 ms and of 10 ms) and the step after it runs on cold caches. Launched world at real time,
-# 10 steps a wake-up against 2 (4 rounds each, 2026-11-28, quiet): 0.126-0.154 of a core
-# against 0.141-0.186, arm1 upright 0.074-0.094 against 0.091-0.113.
+# A sleep costs the world 29-65 µs of CPU on a 2-core virtual machine (time.sleep of 1 ms
+# and 9 ms, 2026-11-28). The launched world at real time, 10 steps a wake-up against 2
+# (interleaved, quiet): 0.179-0.186 of a core against 0.186-0.198, arm1 upright 0.095-0.110
+# against 0.105-0.109 (docs/performance.md).
 MIN_STEPS_PER_WAKE = 2
 MAX_BATCH_WALL = 0.01  # s of wall time a batch spans at most (a slow update rate)
 
