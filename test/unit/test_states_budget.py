@@ -27,13 +27,6 @@ def test_real_time_with_two_steps_a_wake_up_gets_every_step():
     assert run(budget, clock, 10_000, 0.002, 2) == 10_000  # 1 kHz: nothing dropped
 
 
-def test_real_time_with_a_clock_period_a_wake_up_gets_every_step():
-    clock = Clock()
-    budget = RateBudget(MESSAGES_PER_SECOND, BURST, clock)
-    # the world loop at 1 kHz with gazebo.launch's 100 Hz /clock: 10 steps back to back
-    assert run(budget, clock, 10_000, 0.010, 10) == 10_000
-
-
 def test_top_speed_is_capped_in_wall_time():
     clock = Clock()
     budget = RateBudget(MESSAGES_PER_SECOND, BURST, clock)

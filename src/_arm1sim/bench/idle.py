@@ -10,8 +10,8 @@ from .arm import WORLD
 
 
 def idle_world(seconds: float) -> Dict[str, float]:
-    """A 1 kHz world sleeps and wakes whatever it simulates (100 times a wall second with a
-    100 Hz /clock); what a wake-up costs in CPU is measured apart, with plain 0.9 ms sleeps."""
+    """A 1 kHz world sleeps and wakes 1 000 times a wall second whatever it simulates;
+    what each wake-up costs in CPU is measured apart, with plain 0.9 ms sleeps."""
     import rospy
 
     from ..ros.world.world_node import parse_args, start_world

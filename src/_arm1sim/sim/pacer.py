@@ -3,13 +3,6 @@
 import threading
 import time
 
-# A sleep costs the world 29-65 µs of CPU on a 2-core virtual machine (time.sleep of 1 ms
-# and 9 ms, 2026-11-28). The launched world at real time, 10 steps a wake-up against 2
-# (interleaved, quiet): 0.179-0.186 of a core against 0.186-0.198, arm1 upright 0.095-0.110
-# against 0.105-0.109 (docs/performance.md).
-MIN_STEPS_PER_WAKE = 2
-MAX_BATCH_WALL = 0.01  # s of wall time a batch spans at most (a slow update rate)
-
 
 def wall_period(step, real_time_factor, real_time_update_rate):
     """Wall seconds per step: the slower of the update rate and the real-time factor; 0 = flat out.
@@ -22,25 +15,14 @@ def wall_period(step, real_time_factor, real_time_update_rate):
     return max(1.0 / real_time_update_rate, step / real_time_factor)
 
 
-def steps_per_wake(clock_period_ns: int, step_ns: int, period: float) -> int:
-    """Steps per wake-up for the world loop: a /clock period's worth (ROS nodes see sim time
-    move as often, and on time), spanning at most MAX_BATCH_WALL of wall time at ``period``
-    wall seconds a step, at least MIN_STEPS_PER_WAKE."""
-    steps = clock_period_ns // max(1, step_ns)
-    if period > 0:
-        steps = min(steps, int(MAX_BATCH_WALL / period + 1e-9))
-    return max(MIN_STEPS_PER_WAKE, steps)
-
-
 class Pacer:
     """Sleeps between steps so that step k runs at ``start + k * period`` of wall time.
 
-    With ``steps_per_wake`` N > 1 it sleeps until the step that makes the steps done a
-    multiple of N is due and lets them run back to back: N times fewer wake-ups (each costs
-    CPU, and the first step after one runs on cold caches), each batch ending on the same
-    steps whatever woke the loop in between. ``wake()`` (any thread: a command or a hand-over
-    call arrived) cuts such a sleep short, so the next step runs when due, as with one step
-    per wake-up: input waits no longer than it would without batching.
+    With ``steps_per_wake`` N > 1 it sleeps until N steps are due and lets them run back to
+    back: N times fewer wake-ups (each costs CPU, and the first step after one runs on cold
+    caches). ``wake()`` (any thread: a command or a hand-over call arrived) cuts such a sleep
+    short, so the next step runs when due, as with one step per wake-up: input waits no
+    longer than it would without batching.
     """
 
     MAX_LAG = 0.1  # further behind than this, catch up no more: start a new schedule
@@ -57,7 +39,6 @@ class Pacer:
         self._woken.acquire()  # held while nobody has called wake()
         self.nap = nap or self._nap
         self._batched = False
-        self._done = 0
         self.restart()
 
     def restart(self):
@@ -75,13 +56,10 @@ class Pacer:
     def _nap(self, seconds):
         return self._woken.acquire(timeout=seconds)
 
-    def wait(self, done=None):
+    def wait(self):
         """Call once per step, after it: sleeps until the next step is due. True then; False
-        when woken before (a call to serve): serve it, then call ``resume`` until True.
-        ``done``: the steps run so far (default: since restart); batches end when it is a
-        multiple of ``steps_per_wake``."""
+        when woken before (a call to serve): serve it, then call ``resume`` until True."""
         self._count += 1
-        self._done = self._count if done is None else done
         self._batched = self.steps_per_wake > 1
         return self.resume()
 
@@ -98,8 +76,7 @@ class Pacer:
         woken = False
         if self._batched:
             self._batched = False
-            rest = self.steps_per_wake - 1 - self._done % self.steps_per_wake
-            if not self.nap(ahead + rest * self.period):
+            if not self.nap(ahead + (self.steps_per_wake - 1) * self.period):
                 return True  # slept until the batch's last step was due: run them all now
             woken = True  # the next step at its own time
             ahead = due - self.clock()

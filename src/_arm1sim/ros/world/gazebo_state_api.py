@@ -36,7 +36,6 @@ from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
 
 from ...sim import model_state as ms
 from ...sim.model_state import State, StateError
-from ...sim.pacer import MAX_BATCH_WALL
 from ...sim.simulation import Simulation
 from ...sim.wrenches import JointEfforts, Wrenches
 from ..common.publishers import subscribed
@@ -66,9 +65,7 @@ def states_msg(cls: Any, names: List[str], states: List[State]) -> Any:
 
 
 MESSAGES_PER_SECOND = 2000.0  # wall-time cap of each states topic: twice real time's 1 kHz
-# Readings the budget lets through back to back: two of the world loop's longest batches
-# (steps run back to back per wake-up, at most MAX_BATCH_WALL of wall time at real time).
-BURST = 2 * int(MESSAGES_PER_SECOND * MAX_BATCH_WALL)
+BURST = 4  # readings the budget lets through back to back (the world runs 2 steps a wake-up)
 
 
 class RateBudget:

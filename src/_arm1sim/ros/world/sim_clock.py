@@ -17,8 +17,7 @@ MIN_CLOCK_WALL_PERIOD = 0.001  # s: the most /clock messages a wall second gets 
 
 
 class SimClock:
-    """Publishes sim time at each multiple of 1/``pub_clock_frequency`` of sim time (the
-    steps the world loop's batches end on), at most once per
+    """Publishes sim time every ``pub_clock_frequency`` of sim time, at most once per
     MIN_CLOCK_WALL_PERIOD of wall time (faster than real time, every 50 ms of sim time at
     50x is still fine for a rospy.Rate(10)), and the measured real-time factor."""
 
@@ -44,7 +43,7 @@ class SimClock:
             last is None
             or now_ns < last
             or (
-                now_ns // self.period_ns > last // self.period_ns
+                now_ns - last >= self.period_ns
                 and time.perf_counter() - self._last_wall >= MIN_CLOCK_WALL_PERIOD
             )
         ):

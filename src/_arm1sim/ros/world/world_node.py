@@ -47,7 +47,8 @@ class WorldNode:
         """set_physics_properties' max_update_rate (0: as fast as it goes). Physics thread."""
         c = self.sim.config
         if self.pacer is not None:
-            self.loop.pace(self.pacer, wall_period(c.max_step_size, c.real_time_factor, rate))
+            self.pacer.period = wall_period(c.max_step_size, c.real_time_factor, rate)
+            self.pacer.restart()
 
     def spawn(
         self, name: str, xml: str, xyz: Sequence[float], quat: Sequence[float], namespace: str = ''
